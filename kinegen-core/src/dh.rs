@@ -1,0 +1,727 @@
+//! The robot model: a Denavit–Hartenberg table, checked.
+//!
+//! Front ends (the `kinematics!` macro, TOML files) fill a [`RawRobot`] with what the
+//! user wrote, entry by entry, each at a [`Path`] (`joints[2].alpha`). [`validate`]
+//! turns it into a [`Robot`] or into errors that name the path; the front end maps the
+//! path back to a span (macro) or a line (TOML). All rules live here, once.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+
+use num_traits::Zero;
+
+use crate::value::{parse_value, Value};
+
+/// DH convention.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Convention {
+    /// Standard (distal) DH: `A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)`.
+    Standard,
+    /// Modified (proximal, Craig) DH: `A_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)`;
+    /// row i holds `a_{i-1}` and `α_{i-1}`.
+    Modified,
+}
+
+/// Joint type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointKind {
+    /// θ = q + theta + offset.
+    Revolute,
+    /// d = q + d + offset.
+    Prismatic,
+}
+
+/// A row of a reduced (task) Jacobian.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum TaskRow {
+    /// Linear velocity along x.
+    X,
+    /// Linear velocity along y.
+    Y,
+    /// Linear velocity along z.
+    Z,
+    /// Angular velocity about x.
+    Rx,
+    /// Angular velocity about y.
+    Ry,
+    /// Angular velocity about z.
+    Rz,
+}
+
+impl TaskRow {
+    /// All rows in the order of the full geometric Jacobian `[vx vy vz ωx ωy ωz]`.
+    pub const ALL: [TaskRow; 6] = [
+        TaskRow::X,
+        TaskRow::Y,
+        TaskRow::Z,
+        TaskRow::Rx,
+        TaskRow::Ry,
+        TaskRow::Rz,
+    ];
+
+    /// Index of this row in the full 6×N Jacobian.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The name used in DH files (`x`, …, `rz`).
+    pub fn name(self) -> &'static str {
+        ["x", "y", "z", "rx", "ry", "rz"][self as usize]
+    }
+
+    fn parse(s: &str) -> Option<TaskRow> {
+        Self::ALL.into_iter().find(|r| r.name() == s)
+    }
+}
+
+/// Floating-point type of the generated code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Scalar {
+    /// `f64` (default).
+    #[default]
+    F64,
+    /// `f32`, for microcontrollers with a single-precision FPU.
+    F32,
+}
+
+/// A named link parameter: a field of the generated robot type.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    /// Identifier, as written.
+    pub name: String,
+    /// Exact default value (constant: no other parameters).
+    pub value: Value,
+}
+
+/// A checked joint. Offsets are folded into `theta` (revolute) or `d` (prismatic):
+/// the joint variable `q_i` is added to that entry.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// Revolute or prismatic.
+    pub kind: JointKind,
+    /// Link length `a` (modified: `a_{i-1}`).
+    pub a: Value,
+    /// Link twist `α` (modified: `α_{i-1}`).
+    pub alpha: Value,
+    /// Link offset `d`; for a prismatic joint, the constant added to `q_i`.
+    pub d: Value,
+    /// Joint angle `θ`; for a revolute joint, the constant added to `q_i`.
+    pub theta: Value,
+    /// Joint limits `[min, max]` (radians or metres), if given.
+    pub limits: Option<[f64; 2]>,
+}
+
+/// A fixed transform `Trans(xyz) · Rz(yaw) · Ry(pitch) · Rx(roll)`, as in URDF.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Translation.
+    pub xyz: [Value; 3],
+    /// `[roll, pitch, yaw]`.
+    pub rpy: [Value; 3],
+}
+
+/// A checked robot model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Robot {
+    /// Display name (`"UR5"`).
+    pub name: String,
+    /// DH convention.
+    pub convention: Convention,
+    /// Named parameters, in declaration order.
+    pub params: Vec<Param>,
+    /// Joints, base to tool.
+    pub joints: Vec<Joint>,
+    /// Base transform (world → frame 0).
+    pub base: Option<Frame>,
+    /// Tool transform (frame N → tool point).
+    pub tool: Option<Frame>,
+    /// Rows of the reduced Jacobian.
+    pub task: Option<Vec<TaskRow>>,
+    /// Scalar type of generated code.
+    pub scalar: Scalar,
+}
+
+impl Robot {
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Default value of a parameter (NaN for an unknown name; validation rules that out).
+    pub fn param_value(&self, name: &str) -> f64 {
+        self.params
+            .iter()
+            .find(|p| p.name == name)
+            .map_or(f64::NAN, |p| p.value.eval(&|_| f64::NAN))
+    }
+
+    /// Numeric value of an entry with the default parameter values.
+    pub fn eval(&self, v: &Value) -> f64 {
+        v.eval(&|n| self.param_value(n))
+    }
+}
+
+/// One step of a [`Path`].
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PathSeg {
+    /// A key (`joints`, `alpha`).
+    Key(String),
+    /// An index into a list (0-based).
+    Index(usize),
+}
+
+/// Where an entry is in the input: `joints[2].alpha`.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Path(pub Vec<PathSeg>);
+
+impl Path {
+    /// The root.
+    pub fn root() -> Self {
+        Path(Vec::new())
+    }
+
+    /// This path extended by a key.
+    pub fn key(&self, k: &str) -> Self {
+        let mut p = self.clone();
+        p.0.push(PathSeg::Key(k.to_string()));
+        p
+    }
+
+    /// This path extended by an index.
+    pub fn index(&self, i: usize) -> Self {
+        let mut p = self.clone();
+        p.0.push(PathSeg::Index(i));
+        p
+    }
+
+    /// The longest proper prefix (for falling back to an enclosing span).
+    pub fn parent(&self) -> Option<Self> {
+        let mut p = self.clone();
+        p.0.pop().map(|_| p)
+    }
+}
+
+impl fmt::Display for Path {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, seg) in self.0.iter().enumerate() {
+            match seg {
+                PathSeg::Key(k) if i == 0 => write!(f, "{k}")?,
+                PathSeg::Key(k) => write!(f, ".{k}")?,
+                PathSeg::Index(n) => write!(f, "[{n}]")?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// An entry as written: text of an expression (`pi/2`, `a2`), a number, or a list.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RawValue {
+    /// Expression text.
+    Text(String),
+    /// A number as parsed by the front end (TOML floats and integers).
+    Number(f64),
+    /// A list (`limits`, `xyz`, `rpy`, `task`).
+    List(Vec<RawValue>),
+}
+
+/// A joint row as written: `type` and the columns in the order given.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RawJoint {
+    /// `revolute` / `prismatic` as written, if given.
+    pub kind: Option<String>,
+    /// Columns: `a`, `alpha`, `d`, `theta`, `offset`, `limits`, or unknown ones (an error).
+    pub fields: Vec<(String, RawValue)>,
+}
+
+/// A robot as written, before any check.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RawRobot {
+    /// Display name.
+    pub name: Option<String>,
+    /// `standard` / `modified` as written.
+    pub convention: Option<String>,
+    /// Parameters in order.
+    pub params: Vec<(String, RawValue)>,
+    /// Joint rows.
+    pub joints: Vec<RawJoint>,
+    /// Base frame entries (`xyz`, `rpy`).
+    pub base: Option<Vec<(String, RawValue)>>,
+    /// Tool frame entries.
+    pub tool: Option<Vec<(String, RawValue)>>,
+    /// Task rows as written.
+    pub task: Option<Vec<RawValue>>,
+    /// `f64` / `f32`.
+    pub scalar: Option<String>,
+}
+
+/// A problem in the input, at a path.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DhError {
+    /// Where (`joints[1].alpha`); the root for whole-robot problems.
+    pub path: Path,
+    /// What is wrong, one sentence, no location.
+    pub message: String,
+}
+
+impl fmt::Display for DhError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.path.0.is_empty() {
+            f.write_str(&self.message)
+        } else {
+            write!(f, "{}: {}", self.path, self.message)
+        }
+    }
+}
+
+impl std::error::Error for DhError {}
+
+/// Identifiers that cannot be parameter names.
+const RESERVED: &[&str] = &["pi", "PI", "q", "self", "Self", "crate", "super"];
+
+/// Whether `s` is an identifier usable as a parameter / struct field.
+pub fn is_identifier(s: &str) -> bool {
+    let mut ch = s.chars();
+    matches!(ch.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && ch.all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && s != "_"
+}
+
+/// Check a raw robot. Returns every problem found, in input order.
+pub fn validate(raw: &RawRobot) -> Result<Robot, Vec<DhError>> {
+    let mut v = Validator {
+        errors: Vec::new(),
+        params: BTreeSet::new(),
+    };
+    let root = Path::root();
+    let robot = v.robot(raw, &root);
+    if v.errors.is_empty() {
+        Ok(robot)
+    } else {
+        Err(v.errors)
+    }
+}
+
+struct Validator {
+    errors: Vec<DhError>,
+    params: BTreeSet<String>,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Quantity {
+    Length,
+    Angle,
+}
+
+impl Validator {
+    fn err(&mut self, path: Path, message: impl Into<String>) {
+        self.errors.push(DhError {
+            path,
+            message: message.into(),
+        });
+    }
+
+    fn robot(&mut self, raw: &RawRobot, root: &Path) -> Robot {
+        let name = raw.name.clone().unwrap_or_else(|| "robot".to_string());
+        let convention = match raw.convention.as_deref() {
+            Some("standard") | Some("dh") | Some("distal") => Convention::Standard,
+            Some("modified") | Some("mdh") | Some("craig") | Some("proximal") => {
+                Convention::Modified
+            }
+            Some(other) => {
+                self.err(
+                    root.key("convention"),
+                    format!("unknown convention `{other}`: expected `standard` or `modified`"),
+                );
+                Convention::Standard
+            }
+            None => {
+                self.err(
+                    root.clone(),
+                    "missing `convention`: say `standard` (Rz Tz Tx Rx) or `modified` (Rx Tx Rz Tz)",
+                );
+                Convention::Standard
+            }
+        };
+        let scalar = match raw.scalar.as_deref() {
+            None | Some("f64") => Scalar::F64,
+            Some("f32") => Scalar::F32,
+            Some(other) => {
+                self.err(
+                    root.key("scalar"),
+                    format!("unknown scalar type `{other}`: expected `f64` or `f32`"),
+                );
+                Scalar::F64
+            }
+        };
+        let params = self.params(&raw.params, &root.key("params"));
+        if raw.joints.is_empty() {
+            self.err(root.key("joints"), "the DH table has no joints");
+        }
+        let joints = raw
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(i, j)| self.joint(j, &root.key("joints").index(i)))
+            .collect();
+        let base = raw.base.as_ref().map(|f| self.frame(f, &root.key("base")));
+        let tool = raw.tool.as_ref().map(|f| self.frame(f, &root.key("tool")));
+        let task = raw.task.as_ref().map(|t| self.task(t, &root.key("task")));
+        let mut robot = Robot {
+            name,
+            convention,
+            params,
+            joints,
+            base,
+            tool,
+            task,
+            scalar,
+        };
+        if self.errors.is_empty() {
+            self.limits(raw, &mut robot, root);
+        }
+        robot
+    }
+
+    fn params(&mut self, raw: &[(String, RawValue)], path: &Path) -> Vec<Param> {
+        let mut out = Vec::new();
+        for (name, value) in raw {
+            let p = path.key(name);
+            if !is_identifier(name) || RESERVED.contains(&name.as_str()) {
+                self.err(
+                    p.clone(),
+                    format!("`{name}` cannot name a parameter: use an identifier other than `pi` or `q`"),
+                );
+                continue;
+            }
+            if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit()) {
+                self.err(
+                    p.clone(),
+                    format!("`{name}` is the name of a joint variable; choose another parameter name"),
+                );
+                continue;
+            }
+            if !self.params.insert(name.clone()) {
+                self.err(p, format!("duplicate parameter `{name}`"));
+                continue;
+            }
+            if let Some(val) = self.scalar_value(value, &p) {
+                if !val.is_constant() {
+                    self.err(
+                        p,
+                        format!("parameter `{name}` must have a numeric value, not `{val}`"),
+                    );
+                    continue;
+                }
+                out.push(Param {
+                    name: name.clone(),
+                    value: val,
+                });
+            }
+        }
+        out
+    }
+
+    /// Parse one entry without checking parameter names.
+    fn scalar_value(&mut self, raw: &RawValue, path: &Path) -> Option<Value> {
+        match raw {
+            RawValue::Number(x) => match Value::from_f64(*x) {
+                Ok(v) => Some(v),
+                Err(e) => {
+                    self.err(path.clone(), e.message);
+                    None
+                }
+            },
+            RawValue::Text(s) => match parse_value(s) {
+                Ok(v) => Some(v),
+                Err(e) => {
+                    self.err(path.clone(), e.message);
+                    None
+                }
+            },
+            RawValue::List(_) => {
+                self.err(path.clone(), "expected a single value, found a list");
+                None
+            }
+        }
+    }
+
+    /// Parse an entry and check its parameters exist and its π part fits the quantity.
+    fn value(&mut self, raw: &RawValue, path: &Path, q: Quantity) -> Option<Value> {
+        let v = self.scalar_value(raw, path)?;
+        for name in v.param_names() {
+            if !self.params.contains(name) {
+                let hint = if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit())
+                {
+                    " (joint variables are implicit: give the constant part, or use `offset`)"
+                } else {
+                    ""
+                };
+                self.err(
+                    path.clone(),
+                    format!("undefined parameter `{name}`{hint}"),
+                );
+                return None;
+            }
+        }
+        if q == Quantity::Length && !v.pi.is_zero() {
+            self.err(
+                path.clone(),
+                format!("`{v}` contains `pi` but this entry is a length"),
+            );
+            return None;
+        }
+        Some(v)
+    }
+
+    fn joint(&mut self, raw: &RawJoint, path: &Path) -> Joint {
+        let kind = match raw.kind.as_deref() {
+            Some("revolute") | Some("R") => JointKind::Revolute,
+            Some("prismatic") | Some("P") => JointKind::Prismatic,
+            Some(other) => {
+                self.err(
+                    path.key("type"),
+                    format!("unknown joint type `{other}`: expected `revolute` or `prismatic`"),
+                );
+                JointKind::Revolute
+            }
+            None => {
+                self.err(
+                    path.clone(),
+                    "missing joint type: `revolute` or `prismatic`",
+                );
+                JointKind::Revolute
+            }
+        };
+        let mut seen: BTreeMap<&str, &RawValue> = BTreeMap::new();
+        for (key, value) in &raw.fields {
+            let p = path.key(key);
+            if !["a", "alpha", "d", "theta", "offset", "limits"].contains(&key.as_str()) {
+                self.err(
+                    p,
+                    format!("unknown column `{key}`: expected a, alpha, d, theta, offset or limits"),
+                );
+            } else if seen.insert(key.as_str(), value).is_some() {
+                self.err(p, format!("column `{key}` given twice"));
+            }
+        }
+        // The joint variable's own column may be left out (it is q_i); the others may not.
+        let required: &[&str] = match kind {
+            JointKind::Revolute => &["a", "alpha", "d"],
+            JointKind::Prismatic => &["a", "alpha", "theta"],
+        };
+        for col in required {
+            if !seen.contains_key(col) {
+                self.err(path.clone(), format!("missing column `{col}`"));
+            }
+        }
+        let get = |this: &mut Self, key: &str, q: Quantity| -> Value {
+            match seen.get(key) {
+                Some(raw) => this.value(raw, &path.key(key), q).unwrap_or_default(),
+                None => Value::zero(),
+            }
+        };
+        let a = get(self, "a", Quantity::Length);
+        let alpha = get(self, "alpha", Quantity::Angle);
+        let mut d = get(self, "d", Quantity::Length);
+        let mut theta = get(self, "theta", Quantity::Angle);
+        let offset_q = match kind {
+            JointKind::Revolute => Quantity::Angle,
+            JointKind::Prismatic => Quantity::Length,
+        };
+        let offset = get(self, "offset", offset_q);
+        match kind {
+            JointKind::Revolute => theta = theta.add(&offset),
+            JointKind::Prismatic => d = d.add(&offset),
+        }
+        Joint {
+            kind,
+            a,
+            alpha,
+            d,
+            theta,
+            limits: None,
+        }
+    }
+
+    /// Limits are numbers (parameters allowed, at their default values): checked once
+    /// every parameter is known.
+    fn limits(&mut self, raw: &RawRobot, robot: &mut Robot, root: &Path) {
+        for (i, rj) in raw.joints.iter().enumerate() {
+            let Some((_, lim)) = rj.fields.iter().find(|(k, _)| k == "limits") else {
+                continue;
+            };
+            let path = root.key("joints").index(i).key("limits");
+            let RawValue::List(items) = lim else {
+                self.err(path, "limits must be a list `[min, max]`");
+                continue;
+            };
+            if items.len() != 2 {
+                self.err(
+                    path,
+                    format!("limits must be `[min, max]`, found {} values", items.len()),
+                );
+                continue;
+            }
+            let q = match robot.joints[i].kind {
+                JointKind::Revolute => Quantity::Angle,
+                JointKind::Prismatic => Quantity::Length,
+            };
+            let lo = self.value(&items[0], &path.index(0), q);
+            let hi = self.value(&items[1], &path.index(1), q);
+            if let (Some(lo), Some(hi)) = (lo, hi) {
+                let (lo, hi) = (robot.eval(&lo), robot.eval(&hi));
+                if lo > hi {
+                    self.err(path, format!("limits have min {lo} > max {hi}"));
+                } else {
+                    robot.joints[i].limits = Some([lo, hi]);
+                }
+            }
+        }
+    }
+
+    fn frame(&mut self, raw: &[(String, RawValue)], path: &Path) -> Frame {
+        let mut xyz: [Value; 3] = Default::default();
+        let mut rpy: [Value; 3] = Default::default();
+        let mut seen = BTreeSet::new();
+        for (key, value) in raw {
+            let p = path.key(key);
+            let (target, q) = match key.as_str() {
+                "xyz" => (&mut xyz, Quantity::Length),
+                "rpy" => (&mut rpy, Quantity::Angle),
+                _ => {
+                    self.err(
+                        p,
+                        format!("unknown entry `{key}`: a frame has `xyz` and `rpy`"),
+                    );
+                    continue;
+                }
+            };
+            if !seen.insert(key.clone()) {
+                self.err(p, format!("`{key}` given twice"));
+                continue;
+            }
+            match value {
+                RawValue::List(items) if items.len() == 3 => {
+                    for (k, item) in items.iter().enumerate() {
+                        if let Some(v) = self.value(item, &p.index(k), q) {
+                            target[k] = v;
+                        }
+                    }
+                }
+                RawValue::List(items) => self.err(
+                    p,
+                    format!("`{key}` needs 3 values, found {}", items.len()),
+                ),
+                _ => self.err(p, format!("`{key}` must be a list of 3 values")),
+            }
+        }
+        Frame { xyz, rpy }
+    }
+
+    fn task(&mut self, raw: &[RawValue], path: &Path) -> Vec<TaskRow> {
+        let mut out = Vec::new();
+        if raw.is_empty() {
+            self.err(path.clone(), "task rows are empty: list some of x, y, z, rx, ry, rz");
+        }
+        for (i, item) in raw.iter().enumerate() {
+            let p = path.index(i);
+            let name = match item {
+                RawValue::Text(s) => s.trim().to_string(),
+                _ => {
+                    self.err(p, "a task row is one of x, y, z, rx, ry, rz");
+                    continue;
+                }
+            };
+            match TaskRow::parse(&name) {
+                Some(r) if out.contains(&r) => {
+                    self.err(p, format!("task row `{name}` given twice"))
+                }
+                Some(r) => out.push(r),
+                None => self.err(
+                    p,
+                    format!("unknown task row `{name}`: expected x, y, z, rx, ry or rz"),
+                ),
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn t(s: &str) -> RawValue {
+        RawValue::Text(s.to_string())
+    }
+
+    fn rr() -> RawRobot {
+        let row = |a: &str| RawJoint {
+            kind: Some("revolute".into()),
+            fields: vec![
+                ("a".into(), t(a)),
+                ("alpha".into(), RawValue::Number(0.0)),
+                ("d".into(), RawValue::Number(0.0)),
+            ],
+        };
+        RawRobot {
+            name: Some("RR".into()),
+            convention: Some("standard".into()),
+            params: vec![
+                ("L1".into(), RawValue::Number(1.0)),
+                ("L2".into(), RawValue::Number(0.5)),
+            ],
+            joints: vec![row("L1"), row("L2")],
+            task: Some(vec![t("x"), t("y")]),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn accepts_planar_rr() {
+        let r = validate(&rr()).unwrap();
+        assert_eq!(r.dof(), 2);
+        assert_eq!(r.joints[1].a, Value::param("L2"));
+        assert_eq!(r.param_value("L2"), 0.5);
+        assert_eq!(r.task, Some(vec![TaskRow::X, TaskRow::Y]));
+    }
+
+    #[test]
+    fn reports_paths() {
+        let mut raw = rr();
+        raw.joints[1].fields[0].1 = t("L3");
+        raw.joints[0].fields.push(("alhpa".into(), t("0")));
+        raw.task = Some(vec![t("x"), t("x")]);
+        let errs = validate(&raw).unwrap_err();
+        let got: Vec<String> = errs.iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            got,
+            vec![
+                "joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset or limits",
+                "joints[1].a: undefined parameter `L3`",
+                "task[1]: task row `x` given twice",
+            ]
+        );
+    }
+
+    #[test]
+    fn offsets_fold_into_the_joint_column() {
+        let mut raw = rr();
+        raw.joints[0].fields.push(("offset".into(), t("-pi/2")));
+        let r = validate(&raw).unwrap();
+        assert_eq!(r.joints[0].theta, parse_value("-pi/2").unwrap());
+    }
+
+    #[test]
+    fn lengths_reject_pi_and_limits_are_ordered() {
+        let mut raw = rr();
+        raw.joints[0].fields[0].1 = t("pi/2");
+        assert!(validate(&raw).unwrap_err()[0].message.contains("length"));
+        let mut raw = rr();
+        raw.joints[0]
+            .fields
+            .push(("limits".into(), RawValue::List(vec![t("pi"), t("-pi")])));
+        assert!(validate(&raw).unwrap_err()[0].message.contains("min"));
+    }
+}

@@ -1,0 +1,96 @@
+//! The engine's entry point: a checked [`Robot`] in, a pretty-printable Rust item out.
+
+use proc_macro2::{Ident, TokenStream};
+
+use crate::dh::Robot;
+
+/// What the generated item looks like from outside: `#[attrs] vis struct ident`.
+#[derive(Clone, Debug)]
+pub struct ItemHeader {
+    /// Outer attributes written on the struct (doc comments, `#[derive]`s beyond ours).
+    pub attrs: TokenStream,
+    /// Visibility (`pub`, `pub(crate)` or empty).
+    pub vis: TokenStream,
+    /// The type's name.
+    pub ident: Ident,
+}
+
+impl ItemHeader {
+    /// `pub struct <Name>` with the name made a Rust type name from a display name
+    /// (`"UR5"` → `Ur5`, `"planar RR"` → `PlanarRr`).
+    pub fn public(display_name: &str) -> Self {
+        ItemHeader {
+            attrs: TokenStream::new(),
+            vis: quote::quote!(pub),
+            ident: Ident::new(&type_name(display_name), proc_macro2::Span::call_site()),
+        }
+    }
+}
+
+/// A Rust type name (UpperCamelCase) from a display name.
+pub fn type_name(display: &str) -> String {
+    let mut out = String::new();
+    for word in display.split(|c: char| !c.is_ascii_alphanumeric()) {
+        let mut chars = word.chars();
+        if let Some(first) = chars.next() {
+            out.push(first.to_ascii_uppercase());
+            out.extend(chars.map(|c| c.to_ascii_lowercase()));
+        }
+    }
+    if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) {
+        out.insert_str(0, "Robot");
+    }
+    out
+}
+
+/// Bounds on the symbolic engine; over them it emits correct, less simplified code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budget {
+    /// e-graph node limit per simplification run.
+    pub nodes: usize,
+    /// e-graph iteration limit per run.
+    pub iterations: usize,
+    /// Wall-clock safety net for the whole engine, milliseconds.
+    pub time_ms: u64,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget {
+            nodes: 5_000,
+            iterations: 20,
+            time_ms: 10_000,
+        }
+    }
+}
+
+/// Engine options beyond the robot model.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Bounds on simplification.
+    pub budget: Budget,
+}
+
+/// The engine's output.
+#[derive(Clone, Debug)]
+pub struct Generated {
+    /// The item: struct, inherent impl, trait impls.
+    pub tokens: TokenStream,
+    /// Compile-time notes (fallbacks taken, budgets hit), also emitted in the docs.
+    pub notes: Vec<String>,
+}
+
+impl Generated {
+    /// The generated code, pretty-printed.
+    pub fn pretty(&self) -> String {
+        match syn::parse2::<syn::File>(self.tokens.clone()) {
+            Ok(file) => prettyplease::unparse(&file),
+            Err(_) => self.tokens.to_string(),
+        }
+    }
+}
+
+/// Generate the Rust item for a robot.
+pub fn generate(robot: &Robot, header: &ItemHeader, options: &Options) -> Generated {
+    crate::emit::emit(robot, header, options)
+}

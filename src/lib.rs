@@ -1,0 +1,68 @@
+//! # kinegen
+//!
+//! Closed-form robot kinematics generated at compile time from a Denavit–Hartenberg
+//! table: forward kinematics, the geometric Jacobian and its determinant as
+//! allocation-free, `no_std` Rust, plus a runtime that does what the textbooks do with
+//! a Jacobian.
+#![no_std]
+#![warn(missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+// Lets generated code say `::kinegen::…` inside this crate's own tests too.
+extern crate self as kinegen;
+
+pub use kinegen_macro::kinematics;
+
+pub mod math;
+
+/// A robot arm with `N` joints whose kinematics kinegen generated.
+///
+/// Conventions: `q` holds joint values (radians for revolute, metres for prismatic
+/// joints); transforms are row-major 4×4 homogeneous matrices; Jacobians are row-major
+/// with rows `[vx, vy, vz, ωx, ωy, ωz]`: the linear velocity of the tool point and the
+/// angular velocity of the tool frame.
+pub trait Kinematics<const N: usize> {
+    /// The robot's display name.
+    const NAME: &'static str;
+
+    /// Tool pose in the world frame: `base · A1(q1) ⋯ AN(qN) · tool`.
+    fn fk(&self, q: &[f64; N]) -> [[f64; 4]; 4];
+
+    /// Frame of every joint's link in the world frame (`base · A1 ⋯ Ai`, without the tool).
+    fn frames(&self, q: &[f64; N]) -> [[[f64; 4]; 4]; N];
+
+    /// Geometric Jacobian in the world frame.
+    fn jacobian(&self, q: &[f64; N]) -> [[f64; N]; 6];
+
+    /// Geometric Jacobian expressed in the tool frame (same tool point).
+    fn jacobian_ee(&self, q: &[f64; N]) -> [[f64; N]; 6];
+
+    /// Tool pose and world-frame Jacobian together, sharing their common work.
+    fn fk_and_jacobian(&self, q: &[f64; N]) -> ([[f64; 4]; 4], [[f64; N]; 6]) {
+        (self.fk(q), self.jacobian(q))
+    }
+
+    /// Joint limits `[min, max]`; `[-inf, inf]` where the table gives none.
+    fn limits(&self) -> [[f64; 2]; N];
+
+    /// Determinant of the 6×6 Jacobian (`None` unless N = 6).
+    fn jacobian_det(&self, _q: &[f64; N]) -> Option<f64> {
+        None
+    }
+}
+
+/// A robot with a reduced (task) Jacobian of `M` rows, e.g. `[x, y, rz]` for a planar arm.
+pub trait TaskKinematics<const N: usize, const M: usize>: Kinematics<N> {
+    /// Which rows of the full Jacobian, as indices into `[vx, vy, vz, ωx, ωy, ωz]`.
+    const TASK_ROWS: [usize; M];
+
+    /// The task Jacobian: the rows `TASK_ROWS` of [`Kinematics::jacobian`].
+    fn task_jacobian(&self, q: &[f64; N]) -> [[f64; N]; M];
+
+    /// Determinant of the task Jacobian (`None` unless M = N).
+    fn task_jacobian_det(&self, _q: &[f64; N]) -> Option<f64> {
+        None
+    }
+}
