@@ -54,6 +54,13 @@ pub struct Budget {
     pub time_ms: u64,
 }
 
+impl Budget {
+    /// Largest normal form (terms) the exact core keeps for one expression.
+    pub fn max_terms(&self) -> usize {
+        self.nodes.max(1)
+    }
+}
+
 impl Default for Budget {
     fn default() -> Self {
         Budget {
@@ -78,6 +85,8 @@ pub struct Generated {
     pub tokens: TokenStream,
     /// Compile-time notes (fallbacks taken, budgets hit), also emitted in the docs.
     pub notes: Vec<String>,
+    /// Operation counts of the main outputs.
+    pub stats: crate::emit::Stats,
 }
 
 impl Generated {

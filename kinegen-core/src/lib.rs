@@ -3,9 +3,18 @@
 //!
 //! The `kinematics!` macro and the `kinegen` CLI are thin callers of [`generate()`].
 
+pub mod chain;
+pub mod code;
 pub mod dh;
-mod emit;
+pub mod emit;
+pub mod graph;
+pub mod jacobian;
+pub mod model;
+pub mod poly;
 pub mod generate;
+pub mod input;
+pub mod numeric;
+pub mod toml_input;
 pub mod value;
 
 pub use dh::{validate, Robot};

@@ -1,0 +1,337 @@
+//! Straight-line code → readable Rust statements.
+//!
+//! A function body is the set of nodes its outputs reach. Nodes used more than once
+//! get a `let` (common-subexpression sharing across all outputs of the function);
+//! nodes used once are inlined into their single user. Sines and cosines come first,
+//! one `sin_cos` per angle; intermediates whose value is the sine or cosine of a sum of
+//! joint angles are named after it (`c23`).
+
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write;
+
+use crate::chain::{AngleSource, Chain};
+use crate::dh::{JointKind, Robot, Scalar};
+use crate::graph::{Graph, Id, Node};
+use crate::poly::{Poly, VarKind};
+use crate::value::{rat_to_f64, Value};
+
+/// Operation counts of generated code (a subtraction counts as an add; a `sin_cos`
+/// counts one trig).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OpCount {
+    /// Additions and subtractions.
+    pub add: usize,
+    /// Multiplications.
+    pub mul: usize,
+    /// Divisions.
+    pub div: usize,
+    /// Negations.
+    pub neg: usize,
+    /// `sin_cos` calls.
+    pub trig: usize,
+}
+
+impl OpCount {
+    /// add + mul + div + neg.
+    pub fn total(&self) -> usize {
+        self.add + self.mul + self.div + self.neg
+    }
+}
+
+/// A generated body: statements, output expressions, formulas and counts.
+#[derive(Clone, Debug, Default)]
+pub struct Body {
+    /// `let` statements, in order.
+    pub lets: Vec<String>,
+    /// One Rust expression per requested output.
+    pub outputs: Vec<String>,
+    /// `(name, formula)` of the shared intermediates, in order (for docs).
+    pub defs: Vec<(String, String)>,
+    /// Operation counts of the whole body.
+    pub ops: OpCount,
+}
+
+/// Emits bodies for one chain.
+pub struct Coder<'a> {
+    robot: &'a Robot,
+    chain: &'a Chain,
+    /// Names of angle-sum values by normal form.
+    sum_names: HashMap<Poly, String>,
+    scalar: Scalar,
+}
+
+impl<'a> Coder<'a> {
+    /// A coder for `chain`.
+    pub fn new(robot: &'a Robot, chain: &'a Chain) -> Self {
+        let sum_names = angle_sum_names(robot, chain);
+        Coder {
+            robot,
+            chain,
+            sum_names,
+            scalar: robot.scalar,
+        }
+    }
+
+    fn g(&self) -> &Graph {
+        &self.chain.graph
+    }
+
+    /// The floating-point type name.
+    pub fn float(&self) -> &'static str {
+        match self.scalar {
+            Scalar::F64 => "f64",
+            Scalar::F32 => "f32",
+        }
+    }
+
+    /// A float literal.
+    pub fn lit(&self, x: f64) -> String {
+        let s = match self.scalar {
+            Scalar::F64 => format!("{x:?}"),
+            Scalar::F32 => format!("{:?}", x as f32),
+        };
+        if s.contains(['.', 'e', 'E']) || s.contains("inf") || s.contains("NaN") {
+            s
+        } else {
+            format!("{s}.0")
+        }
+    }
+
+    /// Rust expression of a constant value (parameters read from `self`).
+    fn value_expr(&self, v: &Value) -> String {
+        let mut parts = Vec::new();
+        let k = rat_to_f64(&v.konst) + rat_to_f64(&v.pi) * std::f64::consts::PI;
+        for (name, c) in &v.params {
+            let c = rat_to_f64(c);
+            parts.push(if c == 1.0 {
+                format!("self.{name}")
+            } else {
+                format!("{} * self.{name}", self.lit(c))
+            });
+        }
+        if k != 0.0 || parts.is_empty() {
+            parts.push(self.lit(k));
+        }
+        parts.join(" + ")
+    }
+
+    /// The body computing `outputs`.
+    pub fn body(&self, outputs: &[Id]) -> Body {
+        let g = self.g();
+        // Reachable nodes and their use counts.
+        let mut uses: BTreeMap<Id, usize> = BTreeMap::new();
+        let mut stack: Vec<Id> = outputs.to_vec();
+        for &o in outputs {
+            *uses.entry(o).or_default() += 1;
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
+            for c in children(g.node(id)) {
+                *uses.entry(c).or_default() += 1;
+                stack.push(c);
+            }
+        }
+        let mut body = Body::default();
+        let mut names: HashMap<Id, String> = HashMap::new();
+        // Inputs: joint values, parameters, sines and cosines.
+        let mut used_vars: Vec<u32> = seen
+            .iter()
+            .filter_map(|&id| match g.node(id) {
+                Node::Leaf(v) => Some(*v),
+                _ => None,
+            })
+            .collect();
+        used_vars.sort_unstable();
+        for (name, v) in &self.chain.param_vars {
+            if used_vars.contains(v) {
+                body.lets.push(format!("let {name} = self.{name};"));
+            }
+        }
+        for (j, v) in &self.chain.joint_vars {
+            if used_vars.contains(v) {
+                body.lets.push(format!("let q{} = q[{j}];", j + 1));
+            }
+        }
+        for a in &self.chain.angles {
+            let (s, c) = a.vars;
+            if !(used_vars.contains(&s) || used_vars.contains(&c)) {
+                continue;
+            }
+            let (sn, cn) = (g.ring.name(s), g.ring.name(c));
+            let pat = match (used_vars.contains(&s), used_vars.contains(&c)) {
+                (true, true) => format!("({sn}, {cn})"),
+                (true, false) => format!("({sn}, _)"),
+                _ => format!("(_, {cn})"),
+            };
+            let rhs = match &a.source {
+                AngleSource::Joint { joint, offset } => {
+                    body.ops.trig += 1;
+                    if offset.is_zero() {
+                        format!("{}(q[{joint}])", self.sin_cos_fn())
+                    } else {
+                        body.ops.add += 1;
+                        format!(
+                            "{}(q[{joint}] + {})",
+                            self.sin_cos_fn(),
+                            self.value_expr(offset)
+                        )
+                    }
+                }
+                AngleSource::Constant(v) if v.is_constant() => {
+                    let x = self.robot.eval(v);
+                    format!("({}, {})", self.lit(x.sin()), self.lit(x.cos()))
+                }
+                AngleSource::Constant(v) => {
+                    body.ops.trig += 1;
+                    format!("{}({})", self.sin_cos_fn(), self.value_expr(v))
+                }
+            };
+            body.lets.push(format!("let {pat} = {rhs};"));
+        }
+        // Shared intermediates.
+        let mut temp = 0usize;
+        for (&id, &n) in &uses {
+            let node = g.node(id);
+            let bind = n >= 2
+                && match node {
+                    Node::Num(_) | Node::Leaf(_) => false,
+                    Node::Neg(x) => !matches!(g.node(*x), Node::Leaf(_) | Node::Num(_)),
+                    _ => true,
+                };
+            if !bind {
+                continue;
+            }
+            let (expr, _) = self.expr(id, &names, &mut body.ops);
+            let name = g
+                .nf(id)
+                .and_then(|p| self.sum_names.get(p).cloned())
+                .filter(|n| !names.values().any(|m| m == n))
+                .unwrap_or_else(|| {
+                    temp += 1;
+                    format!("t{temp}")
+                });
+            body.lets.push(format!("let {name} = {expr};"));
+            body.defs.push((name.clone(), expr));
+            names.insert(id, name);
+        }
+        for &o in outputs {
+            let (e, _) = self.expr(o, &names, &mut body.ops);
+            body.outputs.push(e);
+        }
+        body
+    }
+
+    fn sin_cos_fn(&self) -> &'static str {
+        match self.scalar {
+            Scalar::F64 => "::kinegen::math::sin_cos",
+            Scalar::F32 => "::kinegen::math::sin_cos_f32",
+        }
+    }
+
+    /// Expression text of a node and its precedence (1 sum, 2 product, 3 unary, 4 atom).
+    fn expr(&self, id: Id, names: &HashMap<Id, String>, ops: &mut OpCount) -> (String, u8) {
+        if let Some(n) = names.get(&id) {
+            return (n.clone(), 4);
+        }
+        let g = self.g();
+        match g.node(id) {
+            Node::Num(r) => {
+                let x = rat_to_f64(r);
+                if x < 0.0 {
+                    (format!("-{}", self.lit(-x)), 3)
+                } else {
+                    (self.lit(x), 4)
+                }
+            }
+            Node::Leaf(v) => match g.ring.kind(*v) {
+                VarKind::Sqrt(k) => (self.lit((*k as f64).sqrt()), 4),
+                _ => (g.ring.name(*v).to_string(), 4),
+            },
+            Node::Add(a, b) => {
+                ops.add += 1;
+                let (x, _) = self.expr(*a, names, ops);
+                let (y, _) = self.expr(*b, names, ops);
+                (format!("{x} + {y}"), 1)
+            }
+            Node::Sub(a, b) => {
+                ops.add += 1;
+                let (x, _) = self.expr(*a, names, ops);
+                let (y, py) = self.expr(*b, names, ops);
+                let y = if py <= 1 { format!("({y})") } else { y };
+                (format!("{x} - {y}"), 1)
+            }
+            Node::Mul(a, b) => {
+                ops.mul += 1;
+                // Constants first: `0.5 * x`.
+                let (a, b) = if g.as_num(*b).is_some() { (*b, *a) } else { (*a, *b) };
+                let (x, px) = self.expr(a, names, ops);
+                let (y, py) = self.expr(b, names, ops);
+                let x = if px <= 2 && px != 2 { format!("({x})") } else { x };
+                let y = if py <= 2 { format!("({y})") } else { y };
+                (format!("{x} * {y}"), 2)
+            }
+            Node::Neg(a) => {
+                ops.neg += 1;
+                let (x, px) = self.expr(*a, names, ops);
+                if px <= 2 && px != 2 || px == 3 {
+                    (format!("-({x})"), 3)
+                } else {
+                    (format!("-{x}"), 3)
+                }
+            }
+        }
+    }
+}
+
+/// The children of a node.
+pub fn children(n: &Node) -> Vec<Id> {
+    match n {
+        Node::Num(_) | Node::Leaf(_) => vec![],
+        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => vec![*a, *b],
+        Node::Neg(a) => vec![*a],
+    }
+}
+
+/// Normal forms of sin/cos of sums of consecutive revolute joint angles → `s23`, `c23`.
+fn angle_sum_names(robot: &Robot, chain: &Chain) -> HashMap<Poly, String> {
+    let g = &chain.graph;
+    let ring = &g.ring;
+    let joint_angle: Vec<Option<(Poly, Poly)>> = robot
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            if j.kind != JointKind::Revolute {
+                return None;
+            }
+            chain.angles.iter().find_map(|a| match &a.source {
+                AngleSource::Joint { joint, offset } if *joint == i && offset.is_zero() => {
+                    Some((Poly::var(a.vars.0), Poly::var(a.vars.1)))
+                }
+                _ => None,
+            })
+        })
+        .collect();
+    let mut out = HashMap::new();
+    for start in 0..joint_angle.len() {
+        let Some((mut s, mut c)) = joint_angle[start].clone() else {
+            continue;
+        };
+        let mut label = format!("{}", start + 1);
+        for (k, next) in joint_angle.iter().enumerate().skip(start + 1) {
+            let Some((s2, c2)) = next else { break };
+            let ns = ring.mul(&s, c2).add(&ring.mul(&c, s2));
+            let nc = ring.mul(&c, c2).sub(&ring.mul(&s, s2));
+            s = ns;
+            c = nc;
+            let sep = if robot.dof() >= 10 { "_" } else { "" };
+            let _ = write!(label, "{sep}{}", k + 1);
+            out.entry(s.clone()).or_insert(format!("s{label}"));
+            out.entry(c.clone()).or_insert(format!("c{label}"));
+        }
+    }
+    out
+}

@@ -1,0 +1,432 @@
+//! Straight-line code as a hash-consed DAG whose nodes carry their exact normal form.
+//!
+//! Every node built through [`Graph`] is folded (`x·0`, `x·1`, `−(−x)`, constants) and
+//! shared structurally; in addition, while the normal forms stay under a term budget,
+//! a node whose value equals (or is the negation of) an existing node's value *is* that
+//! node: value numbering modulo `s² + c² = 1`. Exact zeros vanish, equal entries are
+//! computed once. Past the budget a node simply has no normal form and is shared only
+//! structurally — always correct, just less simplified.
+
+use std::collections::HashMap;
+
+use num_traits::{One, Signed, Zero};
+
+use crate::poly::{Poly, Ring, Var};
+use crate::value::Rat;
+
+/// A node index.
+pub type Id = u32;
+
+/// One operation of the straight-line code.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    /// A rational constant.
+    Num(Rat),
+    /// A ring variable (`s1`, `c1`, `q3`, a parameter, `√3`).
+    Leaf(Var),
+    /// `a + b` (operands ordered by id).
+    Add(Id, Id),
+    /// `a − b`.
+    Sub(Id, Id),
+    /// `a · b` (operands ordered by id).
+    Mul(Id, Id),
+    /// `−a`.
+    Neg(Id),
+}
+
+/// The DAG, its ring and its normal forms.
+#[derive(Clone, Debug)]
+pub struct Graph {
+    /// Variables and reduction rules.
+    pub ring: Ring,
+    nodes: Vec<Node>,
+    nf: Vec<Option<Poly>>,
+    memo: HashMap<Node, Id>,
+    by_nf: HashMap<Poly, Id>,
+    /// Largest normal form (terms) kept; larger ones are dropped.
+    pub max_terms: usize,
+    /// Normal forms dropped for size.
+    pub nf_overflows: usize,
+}
+
+impl Default for Graph {
+    fn default() -> Self {
+        Graph::new(Ring::new(), 4_000)
+    }
+}
+
+impl Graph {
+    /// An empty graph over `ring`.
+    pub fn new(ring: Ring, max_terms: usize) -> Self {
+        Graph {
+            ring,
+            nodes: Vec::new(),
+            nf: Vec::new(),
+            memo: HashMap::new(),
+            by_nf: HashMap::new(),
+            max_terms,
+            nf_overflows: 0,
+        }
+    }
+
+    /// The node with id `id`.
+    pub fn node(&self, id: Id) -> &Node {
+        &self.nodes[id as usize]
+    }
+
+    /// The exact normal form of a node, if it was small enough to keep.
+    pub fn nf(&self, id: Id) -> Option<&Poly> {
+        self.nf[id as usize].as_ref()
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the graph is empty.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The constant value of a node, if it is a `Num`.
+    pub fn as_num(&self, id: Id) -> Option<&Rat> {
+        match &self.nodes[id as usize] {
+            Node::Num(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    fn intern(&mut self, node: Node, nf: Option<Poly>) -> Id {
+        if let Some(&id) = self.memo.get(&node) {
+            return id;
+        }
+        let id = self.nodes.len() as Id;
+        self.nodes.push(node.clone());
+        self.memo.insert(node, id);
+        if let Some(p) = &nf {
+            self.by_nf.entry(p.clone()).or_insert(id);
+        }
+        self.nf.push(nf);
+        id
+    }
+
+    /// A rational constant.
+    pub fn num(&mut self, r: Rat) -> Id {
+        let p = Poly::constant(r.clone());
+        self.intern(Node::Num(r), Some(p))
+    }
+
+    /// An integer constant.
+    pub fn int(&mut self, i: i64) -> Id {
+        self.num(Rat::from_integer(i.into()))
+    }
+
+    /// A variable.
+    pub fn leaf(&mut self, v: Var) -> Id {
+        self.intern(Node::Leaf(v), Some(Poly::var(v)))
+    }
+
+    /// Look up or create a node whose value is `nf` (when known), built as `node`.
+    fn make(&mut self, node: Node, nf: Option<Poly>) -> Id {
+        if let Some(p) = &nf {
+            if let Some(r) = p.as_constant() {
+                return self.num(r);
+            }
+            if let Some(&id) = self.by_nf.get(p) {
+                return id;
+            }
+            let negated = p.neg();
+            if let Some(&id) = self.by_nf.get(&negated) {
+                // Value is −(existing): share it through a negation.
+                if !matches!(node, Node::Neg(x) if x == id) {
+                    return self.intern(Node::Neg(id), nf);
+                }
+            }
+        }
+        self.intern(node, nf)
+    }
+
+    fn nf2(&mut self, a: Id, b: Id, f: impl Fn(&Ring, &Poly, &Poly, usize) -> Option<Poly>) -> Option<Poly> {
+        let (pa, pb) = (self.nf[a as usize].as_ref()?, self.nf[b as usize].as_ref()?);
+        let p = f(&self.ring, pa, pb, self.max_terms);
+        match p {
+            Some(p) if p.len() <= self.max_terms => Some(p),
+            _ => {
+                self.nf_overflows += 1;
+                None
+            }
+        }
+    }
+
+    /// `a + b`.
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        if let (Some(x), Some(y)) = (self.as_num(a), self.as_num(b)) {
+            let r = x + y;
+            return self.num(r);
+        }
+        if self.as_num(a).is_some_and(Zero::is_zero) {
+            return b;
+        }
+        if self.as_num(b).is_some_and(Zero::is_zero) {
+            return a;
+        }
+        // a + (−b) is a − b.
+        if let Node::Neg(x) = self.nodes[b as usize] {
+            return self.sub(a, x);
+        }
+        if let Node::Neg(x) = self.nodes[a as usize] {
+            return self.sub(b, x);
+        }
+        let (a, b) = (a.min(b), a.max(b));
+        let nf = self.nf2(a, b, |_, x, y, _| Some(x.add(y)));
+        self.make(Node::Add(a, b), nf)
+    }
+
+    /// `a − b`.
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        if a == b {
+            return self.int(0);
+        }
+        if let (Some(x), Some(y)) = (self.as_num(a), self.as_num(b)) {
+            let r = x - y;
+            return self.num(r);
+        }
+        if self.as_num(b).is_some_and(Zero::is_zero) {
+            return a;
+        }
+        if self.as_num(a).is_some_and(Zero::is_zero) {
+            return self.neg(b);
+        }
+        if let Node::Neg(x) = self.nodes[b as usize] {
+            return self.add(a, x);
+        }
+        // −x − b = −(x + b): keeps sums positive so that sin(q1+q2) is found as one.
+        if let Node::Neg(x) = self.nodes[a as usize] {
+            let s = self.add(x, b);
+            return self.neg(s);
+        }
+        let nf = self.nf2(a, b, |_, x, y, _| Some(x.sub(y)));
+        self.make(Node::Sub(a, b), nf)
+    }
+
+    /// `−a`.
+    pub fn neg(&mut self, a: Id) -> Id {
+        if let Some(x) = self.as_num(a) {
+            let r = -x;
+            return self.num(r);
+        }
+        match self.nodes[a as usize] {
+            Node::Neg(x) => x,
+            Node::Sub(x, y) => self.sub(y, x),
+            _ => {
+                let nf = self.nf[a as usize].as_ref().map(Poly::neg);
+                if let Some(p) = &nf {
+                    if let Some(&id) = self.by_nf.get(p) {
+                        return id;
+                    }
+                }
+                self.intern(Node::Neg(a), nf)
+            }
+        }
+    }
+
+    /// `a · b`.
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        if let (Some(x), Some(y)) = (self.as_num(a), self.as_num(b)) {
+            let r = x * y;
+            return self.num(r);
+        }
+        for (k, x) in [(a, b), (b, a)] {
+            if let Some(r) = self.as_num(k) {
+                if r.is_zero() {
+                    return self.int(0);
+                }
+                if r.is_one() {
+                    return x;
+                }
+                if (-r).is_one() {
+                    return self.neg(x);
+                }
+            }
+        }
+        // Keep signs outside products: (−x)·y = −(x·y).
+        if let Node::Neg(x) = self.nodes[a as usize] {
+            let m = self.mul(x, b);
+            return self.neg(m);
+        }
+        if let Node::Neg(y) = self.nodes[b as usize] {
+            let m = self.mul(a, y);
+            return self.neg(m);
+        }
+        // Constants first, then negative constants become negations of products.
+        if let Some(r) = self.as_num(a).or(self.as_num(b)) {
+            if r.is_negative() {
+                let pos = -r.clone();
+                let k = self.num(pos);
+                let x = if self.as_num(a).is_some() { b } else { a };
+                let m = self.mul(k, x);
+                return self.neg(m);
+            }
+        }
+        let (a, b) = (a.min(b), a.max(b));
+        let nf = self.nf2(a, b, |ring, x, y, max| ring.mul_bounded(x, y, max).ok());
+        self.make(Node::Mul(a, b), nf)
+    }
+
+    /// `Σ xᵢ` (0 for none).
+    pub fn sum(&mut self, xs: &[Id]) -> Id {
+        let mut acc = self.int(0);
+        for &x in xs {
+            acc = self.add(acc, x);
+        }
+        acc
+    }
+
+    /// Build a polynomial as straight-line code: terms grouped by their leading
+    /// variables (a greedy Horner scheme), shared through the graph.
+    pub fn from_poly(&mut self, p: &Poly) -> Id {
+        let terms: Vec<(Vec<(Var, u32)>, Rat)> =
+            p.terms().map(|(m, c)| (m.clone(), c.clone())).collect();
+        self.horner(terms)
+    }
+
+    fn horner(&mut self, terms: Vec<(Vec<(Var, u32)>, Rat)>) -> Id {
+        if terms.is_empty() {
+            return self.int(0);
+        }
+        // Pull out the rational content: 2a + 4b = 2(a + 2b).
+        if terms.len() > 1 {
+            let g = terms
+                .iter()
+                .map(|(_, c)| c.abs())
+                .reduce(|x, y| rat_gcd(&x, &y))
+                .unwrap_or_else(Rat::one);
+            let g = if terms[0].1.is_negative() { -g } else { g };
+            if !g.is_one() {
+                let inner = terms.into_iter().map(|(m, c)| (m, c / &g)).collect();
+                let x = self.horner(inner);
+                let k = self.num(g);
+                return self.mul(k, x);
+            }
+        }
+        if terms.len() == 1 {
+            let (m, c) = &terms[0];
+            let mut acc = self.num(c.clone());
+            for &(v, e) in m {
+                let l = self.leaf(v);
+                for _ in 0..e {
+                    acc = self.mul(acc, l);
+                }
+            }
+            return acc;
+        }
+        // The variable in most terms.
+        let mut count: std::collections::BTreeMap<Var, usize> = Default::default();
+        for (m, _) in &terms {
+            for &(v, _) in m {
+                *count.entry(v).or_default() += 1;
+            }
+        }
+        let best = count
+            .iter()
+            .max_by(|x, y| x.1.cmp(y.1).then(y.0.cmp(x.0)))
+            .map(|(&v, &n)| (v, n));
+        match best {
+            Some((v, n)) if n >= 2 => {
+                let (with, without): (Vec<_>, Vec<_>) =
+                    terms.into_iter().partition(|(m, _)| m.iter().any(|&(w, _)| w == v));
+                let reduced = with
+                    .into_iter()
+                    .map(|(m, c)| {
+                        let m: Vec<(Var, u32)> = m
+                            .into_iter()
+                            .filter_map(|(w, e)| {
+                                if w == v {
+                                    (e > 1).then_some((w, e - 1))
+                                } else {
+                                    Some((w, e))
+                                }
+                            })
+                            .collect();
+                        (m, c)
+                    })
+                    .collect();
+                let inner = self.horner(reduced);
+                let l = self.leaf(v);
+                let prod = self.mul(l, inner);
+                let rest = self.horner(without);
+                self.add(prod, rest)
+            }
+            _ => {
+                let mut ids = Vec::new();
+                for t in terms {
+                    ids.push(self.horner(vec![t]));
+                }
+                self.sum(&ids)
+            }
+        }
+    }
+
+    /// Numeric value of a node with variable values `x`.
+    pub fn eval(&self, id: Id, x: &dyn Fn(Var) -> f64) -> f64 {
+        let mut memo = vec![None; self.nodes.len()];
+        self.eval_memo(id, x, &mut memo)
+    }
+
+    fn eval_memo(&self, id: Id, x: &dyn Fn(Var) -> f64, memo: &mut Vec<Option<f64>>) -> f64 {
+        if let Some(v) = memo[id as usize] {
+            return v;
+        }
+        let v = match &self.nodes[id as usize] {
+            Node::Num(r) => crate::value::rat_to_f64(r),
+            Node::Leaf(v) => x(*v),
+            Node::Add(a, b) => self.eval_memo(*a, x, memo) + self.eval_memo(*b, x, memo),
+            Node::Sub(a, b) => self.eval_memo(*a, x, memo) - self.eval_memo(*b, x, memo),
+            Node::Mul(a, b) => self.eval_memo(*a, x, memo) * self.eval_memo(*b, x, memo),
+            Node::Neg(a) => -self.eval_memo(*a, x, memo),
+        };
+        memo[id as usize] = Some(v);
+        v
+    }
+}
+
+fn rat_gcd(a: &Rat, b: &Rat) -> Rat {
+    use num_integer::Integer;
+    Rat::new(a.numer().gcd(b.numer()), a.denom().lcm(b.denom()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_values_are_one_node() {
+        let mut g = Graph::default();
+        let (s, c) = g.ring.angle(0, "1");
+        let (s, c) = (g.leaf(s), g.leaf(c));
+        let ss = g.mul(s, s);
+        let cc = g.mul(c, c);
+        let one = g.add(ss, cc);
+        assert_eq!(g.as_num(one), Some(&Rat::one()));
+        // c² − 1 = −s²: found as the negation of the existing node.
+        let m1 = g.int(1);
+        let x = g.sub(cc, m1);
+        assert_eq!(g.node(x), &Node::Neg(ss));
+    }
+
+    #[test]
+    fn horner_groups_terms() {
+        let mut g = Graph::default();
+        let (s, c) = g.ring.angle(0, "1");
+        let a = g.ring.param("a");
+        let p = Poly::from_terms([
+            (vec![(s, 1), (a, 1)], Rat::one()),
+            (vec![(c, 1), (a, 1)], Rat::one()),
+        ]);
+        let id = g.from_poly(&p);
+        assert_eq!(g.nf(id), Some(&p));
+        // a·(s + c): one multiplication.
+        assert!(matches!(g.node(id), Node::Mul(..)));
+    }
+}
