@@ -9,8 +9,16 @@ fn main() {
         }
     };
     let t = std::time::Instant::now();
-    let g = kinegen_core::generate(&robot, &kinegen_core::ItemHeader::public(&robot.name), &options);
+    let g = kinegen_core::generate(
+        &robot,
+        &kinegen_core::ItemHeader::public(&robot.name),
+        &options,
+    );
     let dt = t.elapsed();
     println!("{}", g.pretty());
-    eprintln!("engine: {:.1} ms; notes: {:?}", dt.as_secs_f64() * 1e3, g.notes);
+    eprintln!(
+        "engine: {:.1} ms; notes: {:?}",
+        dt.as_secs_f64() * 1e3,
+        g.notes
+    );
 }

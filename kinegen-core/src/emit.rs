@@ -11,7 +11,8 @@ use crate::model::Model;
 use crate::value::fmt_rat;
 
 pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Generated {
-    let model = Model::build(robot, options);
+    let mut model = Model::build(robot, options);
+    let det = crate::det::square_rows(robot).map(|_| model.determinant(robot));
     let coder = Coder::new(robot, &model.chain);
     let n = robot.dof();
     let f = coder.float();
@@ -93,10 +94,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
         &format!("[{mat4}; {n}]"),
         &body,
         |o| {
-            let parts: Vec<String> = o
-                .chunks(12)
-                .map(|c| transform_literal(&coder, c))
-                .collect();
+            let parts: Vec<String> = o.chunks(12).map(|c| transform_literal(&coder, c)).collect();
             format!("[{}]", parts.join(", "))
         },
     );
@@ -176,6 +174,104 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
         );
     }
 
+    // jacobian_det, singular factors
+    let mut det_ops = None;
+    let det_rows = crate::det::square_rows(robot);
+    match (&det, &det_rows) {
+        (Some(Ok(d)), _) => {
+            let mut ids = vec![d.node];
+            ids.extend(d.factors.iter().map(|f| f.node));
+            let body = coder.body(&ids[..1]);
+            det_ops = Some(body.ops);
+            let which = if d.rows.len() == 6 && robot.dof() == 6 {
+                "the 6×6 geometric Jacobian".to_string()
+            } else {
+                "the task Jacobian".to_string()
+            };
+            let doc = format!(
+                "Determinant of {which}, in closed form:\n\n```text\ndet J = {}\n```\n\n\
+                 LaTeX: `{}`\n\n\
+                 Rows `[vx vy vz ωx ωy ωz]` (linear velocity of the tool point); the value does not depend on \
+                 the frame the Jacobian is expressed in nor on the reference point. Signs follow the \
+                 table's convention and joint offsets. {} operations, {} `sin_cos`.",
+                d.text,
+                d.latex,
+                body.ops.total(),
+                body.ops.trig
+            );
+            method(&mut methods, &doc, "jacobian_det", &qty, f, &body, |o| {
+                o[0].clone()
+            });
+            let fbody = coder.body(&ids[1..]);
+            let k = d.factors.len();
+            let list: Vec<String> = d
+                .factors
+                .iter()
+                .map(|x| format!("{} = 0", x.text))
+                .collect();
+            let doc = format!(
+                "The factors of `det J` ({k}): the Jacobian is singular exactly where one of them is zero.\n\n```text\n{}\n```",
+                list.join("\n")
+            );
+            method(
+                &mut methods,
+                &doc,
+                "singular_factors",
+                &qty,
+                &format!("[{f}; {k}]"),
+                &fbody,
+                |o| format!("[{}]", o.join(", ")),
+            );
+            let sing: Vec<String> = d
+                .factors
+                .iter()
+                .map(|x| {
+                    format!(
+                        "::kinegen::Singularity {{ condition: {:?}, latex: {:?}, joints: &{:?} }}",
+                        format!("{} = 0", x.text),
+                        format!("{} = 0", x.latex),
+                        x.joints
+                    )
+                })
+                .collect();
+            let _ = writeln!(
+                methods,
+                "/// `det J` as text: `{}`.\npub const DET: &'static str = {:?};\n/// `det J` in LaTeX.\npub const DET_LATEX: &'static str = {:?};\n\
+                 /// Singular configurations: where each factor of `det J` vanishes (in the order of [`Self::singular_factors`]).\n\
+                 pub const SINGULARITIES: &'static [::kinegen::Singularity] = &[{}];",
+                d.text,
+                d.text,
+                d.latex,
+                sing.join(", ")
+            );
+        }
+        (Some(Err(why)), Some(rows)) => {
+            notes.push(format!(
+                "jacobian_det: {why}; emitted a numeric LU determinant instead"
+            ));
+            let src = if rows.len() == 6
+                && robot.dof() == 6
+                && robot.task.as_ref().is_none_or(|t| t.len() != 6)
+            {
+                "self.jacobian(q)"
+            } else {
+                "self.task_jacobian(q)"
+            };
+            let lu = if robot.scalar == Scalar::F64 {
+                "det_lu"
+            } else {
+                "det_lu_f32"
+            };
+            let _ = writeln!(
+                methods,
+                "/// Determinant of the square Jacobian, numerically (LU with partial pivoting on a \
+                 stack array): the closed form was not produced ({why}).\n#[inline]\n#[must_use]\n\
+                 pub fn jacobian_det(&self, q: {qty}) -> {f} {{ ::kinegen::math::{lu}({src}) }}"
+            );
+        }
+        _ => {}
+    }
+
     // limits
     let lims: Vec<String> = robot
         .joints
@@ -208,6 +304,12 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
              #[inline] fn limits(&self) -> [[f64; 2]; {n}] {{ Self::LIMITS }}\n",
             robot.name
         );
+        if det.is_some() && det_rows.as_ref().is_some_and(|r| r.len() == 6 && n == 6) {
+            let _ = writeln!(
+                tr,
+                "#[inline] fn jacobian_det(&self, q: &[f64; {n}]) -> Option<f64> {{ Some({ident}::jacobian_det(self, q)) }}"
+            );
+        }
         tr.push_str("}\n");
         items.push_str(&tr);
         if let Some(task) = &robot.task {
@@ -217,8 +319,13 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
                 items,
                 "impl ::kinegen::TaskKinematics<{n}, {m}> for {ident} {{\n\
                  const TASK_ROWS: [usize; {m}] = [{}];\n\
-                 #[inline] fn task_jacobian(&self, q: &[f64; {n}]) -> [[f64; {n}]; {m}] {{ {ident}::task_jacobian(self, q) }}\n}}",
-                rows.join(", ")
+                 #[inline] fn task_jacobian(&self, q: &[f64; {n}]) -> [[f64; {n}]; {m}] {{ {ident}::task_jacobian(self, q) }}\n{}}}",
+                rows.join(", "),
+                if det.is_some() && m == n {
+                    format!("#[inline] fn task_jacobian_det(&self, q: &[f64; {n}]) -> Option<f64> {{ Some({ident}::jacobian_det(self, q)) }}\n")
+                } else {
+                    String::new()
+                }
             );
         }
     }
@@ -245,6 +352,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
         stats: Stats {
             fk: fk_ops,
             jacobian: jac_ops,
+            det: det_ops,
         },
     }
 }
@@ -256,6 +364,8 @@ pub struct Stats {
     pub fk: OpCount,
     /// `jacobian`.
     pub jacobian: OpCount,
+    /// `jacobian_det`, when it has a closed form.
+    pub det: Option<OpCount>,
 }
 
 fn struct_doc(robot: &Robot) -> String {
@@ -272,7 +382,9 @@ fn struct_doc(robot: &Robot) -> String {
         let q = format!("q{}", i + 1);
         let (d, th) = match j.kind {
             crate::dh::JointKind::Revolute => (j.d.to_string(), with_var(&q, &j.theta.to_string())),
-            crate::dh::JointKind::Prismatic => (with_var(&q, &j.d.to_string()), j.theta.to_string()),
+            crate::dh::JointKind::Prismatic => {
+                (with_var(&q, &j.d.to_string()), j.theta.to_string())
+            }
         };
         let _ = writeln!(
             s,
@@ -285,7 +397,9 @@ fn struct_doc(robot: &Robot) -> String {
             th
         );
     }
-    s.push_str("///\n/// Joint angles enter as `s_i = sin(q_i)`, `c_i = cos(q_i)`; `s23 = sin(q2 + q3)`.");
+    s.push_str(
+        "///\n/// Joint angles enter as `s_i = sin(q_i)`, `c_i = cos(q_i)`; `s23 = sin(q2 + q3)`.",
+    );
     let _ = fmt_rat;
     s
 }

@@ -41,6 +41,8 @@ pub struct Graph {
     pub ring: Ring,
     nodes: Vec<Node>,
     nf: Vec<Option<Poly>>,
+    /// Operations in the node's expression tree (saturating).
+    cost: Vec<u32>,
     memo: HashMap<Node, Id>,
     by_nf: HashMap<Poly, Id>,
     /// Largest normal form (terms) kept; larger ones are dropped.
@@ -62,6 +64,7 @@ impl Graph {
             ring,
             nodes: Vec::new(),
             nf: Vec::new(),
+            cost: Vec::new(),
             memo: HashMap::new(),
             by_nf: HashMap::new(),
             max_terms,
@@ -102,12 +105,20 @@ impl Graph {
             return id;
         }
         let id = self.nodes.len() as Id;
+        let cost = self.tree_cost(&node);
         self.nodes.push(node.clone());
         self.memo.insert(node, id);
         if let Some(p) = &nf {
-            self.by_nf.entry(p.clone()).or_insert(id);
+            // The cheapest node of a value represents it from now on.
+            match self.by_nf.get(p) {
+                Some(&old) if self.cost[old as usize] <= cost => {}
+                _ => {
+                    self.by_nf.insert(p.clone(), id);
+                }
+            }
         }
         self.nf.push(nf);
+        self.cost.push(cost);
         id
     }
 
@@ -127,6 +138,17 @@ impl Graph {
         self.intern(Node::Leaf(v), Some(Poly::var(v)))
     }
 
+    fn tree_cost(&self, node: &Node) -> u32 {
+        let c = |x: &Id| self.cost[*x as usize];
+        match node {
+            Node::Num(_) | Node::Leaf(_) => 0,
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => {
+                c(a).saturating_add(c(b)).saturating_add(1)
+            }
+            Node::Neg(a) => c(a).saturating_add(1),
+        }
+    }
+
     /// Look up or create a node whose value is `nf` (when known), built as `node`.
     fn make(&mut self, node: Node, nf: Option<Poly>) -> Id {
         if let Some(p) = &nf {
@@ -134,7 +156,11 @@ impl Graph {
                 return self.num(r);
             }
             if let Some(&id) = self.by_nf.get(p) {
-                return id;
+                // An equal value exists; keep it unless this form is cheaper.
+                if self.cost[id as usize] <= self.tree_cost(&node) {
+                    return id;
+                }
+                return self.intern(node, nf);
             }
             let negated = p.neg();
             if let Some(&id) = self.by_nf.get(&negated) {
@@ -147,7 +173,12 @@ impl Graph {
         self.intern(node, nf)
     }
 
-    fn nf2(&mut self, a: Id, b: Id, f: impl Fn(&Ring, &Poly, &Poly, usize) -> Option<Poly>) -> Option<Poly> {
+    fn nf2(
+        &mut self,
+        a: Id,
+        b: Id,
+        f: impl Fn(&Ring, &Poly, &Poly, usize) -> Option<Poly>,
+    ) -> Option<Poly> {
         let (pa, pb) = (self.nf[a as usize].as_ref()?, self.nf[b as usize].as_ref()?);
         let p = f(&self.ring, pa, pb, self.max_terms);
         match p {
@@ -334,8 +365,9 @@ impl Graph {
             .map(|(&v, &n)| (v, n));
         match best {
             Some((v, n)) if n >= 2 => {
-                let (with, without): (Vec<_>, Vec<_>) =
-                    terms.into_iter().partition(|(m, _)| m.iter().any(|&(w, _)| w == v));
+                let (with, without): (Vec<_>, Vec<_>) = terms
+                    .into_iter()
+                    .partition(|(m, _)| m.iter().any(|&(w, _)| w == v));
                 let reduced = with
                     .into_iter()
                     .map(|(m, c)| {

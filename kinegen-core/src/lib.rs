@@ -5,16 +5,19 @@
 
 pub mod chain;
 pub mod code;
+pub mod det;
 pub mod dh;
 pub mod emit;
-pub mod graph;
-pub mod jacobian;
-pub mod model;
-pub mod poly;
 pub mod generate;
+pub mod graph;
 pub mod input;
+pub mod jacobian;
+pub mod latex;
+pub mod model;
 pub mod numeric;
+pub mod poly;
 pub mod toml_input;
+pub mod trig;
 pub mod value;
 
 pub use dh::{validate, Robot};

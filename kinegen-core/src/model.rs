@@ -106,3 +106,206 @@ impl Model {
             .collect()
     }
 }
+
+/// The closed-form Jacobian determinant and the singular factors it implies.
+#[derive(Clone, Debug)]
+pub struct DetModel {
+    /// Rows of the square Jacobian (indices into `[vx vy vz ωx ωy ωz]`).
+    pub rows: Vec<usize>,
+    /// `constant · Π factors`.
+    pub factored: crate::det::Factored,
+    /// Distinct nonconstant factors with multiplicity, their node, text and LaTeX.
+    pub factors: Vec<DetFactor>,
+    /// The whole determinant.
+    pub node: Id,
+    /// Plain text: `a2*a3*sin(q3)*sin(q5)*(…)`.
+    pub text: String,
+    /// LaTeX.
+    pub latex: String,
+}
+
+/// One factor of a determinant.
+#[derive(Clone, Debug)]
+pub struct DetFactor {
+    /// Normal form.
+    pub poly: crate::poly::Poly,
+    /// Multiplicity.
+    pub power: u32,
+    /// Code.
+    pub node: Id,
+    /// Text (`sin(q3)`, `a2*cos(q2) + a3*cos(q2+q3)`).
+    pub text: String,
+    /// LaTeX.
+    pub latex: String,
+    /// Joints (1-based) it depends on.
+    pub joints: Vec<usize>,
+}
+
+impl Model {
+    /// The determinant of the square (task) Jacobian, if there is one and it is
+    /// within budget; `Err` with the reason otherwise.
+    pub fn determinant(&mut self, robot: &Robot) -> Result<DetModel, String> {
+        use crate::det;
+        use crate::poly::VarKind;
+        use crate::trig;
+        use num_traits::Signed;
+        let rows = det::square_rows(robot).ok_or("the Jacobian is not square")?;
+        let factored = det::determinant(robot, &mut self.chain, &rows)
+            .map_err(|e| format!("closed-form determinant over budget ({e:?})"))?;
+        let mut factors = Vec::new();
+        let mut factored = factored;
+        for (poly, power) in det::powers(&factored.clone()) {
+            let mut poly = poly;
+            let mut terms = trig::rewrite(&self.chain, &poly);
+            // Sign: most terms positive, the first one positive on a tie.
+            if let Some(t) = &mut terms {
+                let neg = t.iter().filter(|x| x.coef.is_negative()).count();
+                if 2 * neg > t.len() || (2 * neg == t.len() && t[0].coef.is_negative()) {
+                    for x in t.iter_mut() {
+                        x.coef = -x.coef.clone();
+                    }
+                    poly = poly.neg();
+                    if power % 2 == 1 {
+                        factored.constant = -factored.constant.clone();
+                    }
+                    for f in factored.factors.iter_mut() {
+                        if *f == poly.neg() {
+                            *f = poly.clone();
+                        }
+                    }
+                }
+            }
+            let (text, latex) = match &terms {
+                Some(t) => (trig::text(&self.chain, t), trig::latex(&self.chain, t)),
+                None => {
+                    let s = self.chain.graph.ring.display(&poly).to_string();
+                    (s.clone(), s)
+                }
+            };
+            let g = &mut self.chain.graph;
+            let node = match &terms {
+                Some(terms) => {
+                    let mut acc = Vec::new();
+                    for t in terms {
+                        let mut x = g.num(t.coef.clone());
+                        for &(v, e) in &t.rest {
+                            let l = g.leaf(v);
+                            for _ in 0..e {
+                                x = g.mul(x, l);
+                            }
+                        }
+                        for f in &t.trig {
+                            let nf = trig_nf(&self.chain.angles, &g.ring, f);
+                            let y = g.from_poly(&nf);
+                            x = g.mul(x, y);
+                        }
+                        acc.push(x);
+                    }
+                    g.sum(&acc)
+                }
+                None => g.from_poly(&poly),
+            };
+            let mut joints: Vec<usize> = poly
+                .vars()
+                .into_iter()
+                .filter_map(|v| match g.ring.kind(v) {
+                    VarKind::Sin(a) | VarKind::Cos(a) => match &self.chain.angles[*a].source {
+                        crate::chain::AngleSource::Joint { joint, .. } => Some(joint + 1),
+                        _ => None,
+                    },
+                    VarKind::Joint(j) => Some(j + 1),
+                    _ => None,
+                })
+                .collect();
+            joints.dedup();
+            factors.push(DetFactor {
+                poly,
+                power,
+                node,
+                text,
+                latex,
+                joints,
+            });
+        }
+        // Parameters first, then single sines and cosines, then the larger factors.
+        factors.sort_by_key(|f| (!f.joints.is_empty(), f.poly.len(), f.joints.clone()));
+        let g = &mut self.chain.graph;
+        let mut node = g.num(factored.constant.clone());
+        for f in &factors {
+            for _ in 0..f.power {
+                node = g.mul(node, f.node);
+            }
+        }
+        // Check: the emitted product equals the determinant's normal form.
+        if let (Some(nf), Ok(expanded)) = (g.nf(node), factored.expand(&g.ring, g.max_terms)) {
+            if *nf != expanded {
+                return Err("internal check failed: simplified determinant differs".into());
+            }
+        }
+        let (text, latex) = det_text(&factored.constant, &factors);
+        Ok(DetModel {
+            rows,
+            factored,
+            factors,
+            node,
+            text,
+            latex,
+        })
+    }
+}
+
+fn trig_nf(
+    angles: &[crate::chain::AngleDef],
+    ring: &crate::poly::Ring,
+    t: &crate::trig::SumTrig,
+) -> crate::poly::Poly {
+    use crate::poly::Poly;
+    let (mut s, mut c) = (Poly::zero(), Poly::one());
+    for &a in &t.angles {
+        let (sa, ca) = (Poly::var(angles[a].vars.0), Poly::var(angles[a].vars.1));
+        let ns = ring.mul(&s, &ca).add(&ring.mul(&c, &sa));
+        let nc = ring.mul(&c, &ca).sub(&ring.mul(&s, &sa));
+        s = ns;
+        c = nc;
+    }
+    if t.sin {
+        s
+    } else {
+        c
+    }
+}
+
+fn det_text(constant: &crate::value::Rat, factors: &[DetFactor]) -> (String, String) {
+    use num_traits::{One, Signed};
+    let mut text: Vec<String> = Vec::new();
+    let mut latex: Vec<String> = Vec::new();
+    let neg = constant.is_negative();
+    let k = constant.abs();
+    if !k.is_one() || factors.is_empty() {
+        text.push(crate::value::fmt_rat(&k));
+        latex.push(crate::value::fmt_rat(&k));
+    }
+    for f in factors {
+        let single = f.poly.len() == 1;
+        let (t, l) = if single {
+            (f.text.clone(), f.latex.clone())
+        } else {
+            (
+                format!("({})", f.text),
+                format!("\\left({}\\right)", f.latex),
+            )
+        };
+        let (t, l) = if f.power > 1 {
+            (format!("{t}^{}", f.power), format!("{l}^{{{}}}", f.power))
+        } else {
+            (t, l)
+        };
+        text.push(t);
+        latex.push(l);
+    }
+    let sign = if neg { "-" } else { "" };
+    (
+        format!("{sign}{}", text.join("*")),
+        format!("{sign}{}", latex.join(" \\, ")),
+    )
+}

@@ -1,1 +1,80 @@
+//! Real robots' kinematics, generated at compile time by `kinegen::kinematics!` from the
+//! DH tables in this crate's TOML files (each cites its source).
+//!
+//! ```
+//! use kinegen_robots::Ur5;
+//! let ur5 = Ur5::default();
+//! let q = [0.1, -1.2, 1.4, -0.3, 1.1, 0.2];
+//! let t = ur5.fk(&q);
+//! let j = ur5.jacobian(&q);
+//! assert!(ur5.jacobian_det(&q).abs() > 1e-6);
+//! # let _ = (t, j);
+//! ```
 #![no_std]
+// Parameter names follow the DH tables (`L1`, `a2`).
+#![allow(non_snake_case)]
+
+kinegen::kinematics! {
+    /// Textbook planar RR arm (L1 = L2 = 1), task `[x, y]`.
+    pub struct PlanarRr = "planar_rr.toml";
+}
+kinegen::kinematics! {
+    /// Planar RRR arm of the course notes (a = 3.5, 3.5, 2), task `[x, y, rz]`.
+    pub struct PlanarRrr = "planar_rrr.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR3.
+    pub struct Ur3 = "ur3.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR5.
+    pub struct Ur5 = "ur5.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR10.
+    pub struct Ur10 = "ur10.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR5e.
+    pub struct Ur5e = "ur5e.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR10e.
+    pub struct Ur10e = "ur10e.toml";
+}
+kinegen::kinematics! {
+    /// Unimation PUMA 560 (standard DH, Corke's model).
+    pub struct Puma560 = "puma560.toml";
+}
+kinegen::kinematics! {
+    /// Stanford arm (prismatic joint 3).
+    pub struct Stanford = "stanford.toml";
+}
+kinegen::kinematics! {
+    /// Franka Emika Panda (modified DH, flange and hand).
+    pub struct Panda = "panda.toml";
+}
+kinegen::kinematics! {
+    /// KUKA LBR iiwa 14 R820 (7 joints).
+    pub struct KukaIiwa14 = "kuka_iiwa14.toml";
+}
+kinegen::kinematics! {
+    /// KUKA KR 6 R900.
+    pub struct KukaKr6R900 = "kuka_kr6_r900.toml";
+}
+kinegen::kinematics! {
+    /// ABB IRB 120.
+    pub struct AbbIrb120 = "abb_irb120.toml";
+}
+kinegen::kinematics! {
+    /// ABB IRB 140.
+    pub struct AbbIrb140 = "abb_irb140.toml";
+}
+kinegen::kinematics! {
+    /// SCARA (Adept Cobra s600), task `[x, y, z, rz]`.
+    pub struct Scara = "scara.toml";
+}
+kinegen::kinematics! {
+    /// Cylindrical RPP arm.
+    pub struct CylindricalRpp = "cylindrical_rpp.toml";
+}

@@ -1,0 +1,336 @@
+//! Reading polynomials back as trigonometry: `a2 c2 c3 − a2 s2 s3` → `a2·cos(q2+q3)`.
+//!
+//! A normal form in `s_i`, `c_i` is exact but long; people write sines and cosines of
+//! angle sums. This module rewrites a polynomial greedily as a sum of terms
+//! `coefficient · (other variables) · Π sin/cos(q_i + … + q_j)` over runs of consecutive
+//! joints, taking at each step the grouping that absorbs the most terms, and checks the
+//! result expands back to the same normal form (else it keeps the plain form).
+
+use std::collections::BTreeMap;
+
+use num_traits::{One, Signed};
+
+use crate::chain::{AngleSource, Chain};
+use crate::poly::{Mono, Poly, Ring, Var};
+use crate::value::{fmt_rat, Rat};
+
+/// `sin` or `cos` of the sum of joint angles `first..=last` (1-based joint numbers).
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct SumTrig {
+    /// true for sin.
+    pub sin: bool,
+    /// Angles (indices into `chain.angles`) summed, consecutive joints.
+    pub angles: Vec<usize>,
+}
+
+/// One term: `coef · rest · Π trig`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrigTerm {
+    /// Rational coefficient.
+    pub coef: Rat,
+    /// Non-trigonometric variables (parameters, prismatic joints, √k).
+    pub rest: Mono,
+    /// Trigonometric factors; a variable squared appears twice.
+    pub trig: Vec<SumTrig>,
+}
+
+/// Angles that can be summed: joint angles in order (`None` breaks a run).
+struct Angles {
+    /// For each ring var that is a sine/cosine: (angle index, is_sin).
+    of_var: BTreeMap<Var, (usize, bool)>,
+    /// Joint number (1-based) of each angle, if it is a joint angle without offset.
+    joint_of: Vec<Option<usize>>,
+    sin_var: Vec<Var>,
+    cos_var: Vec<Var>,
+}
+
+impl Angles {
+    fn new(chain: &Chain) -> Self {
+        let mut of_var = BTreeMap::new();
+        let mut joint_of = Vec::new();
+        let mut sin_var = Vec::new();
+        let mut cos_var = Vec::new();
+        for (k, a) in chain.angles.iter().enumerate() {
+            of_var.insert(a.vars.0, (k, true));
+            of_var.insert(a.vars.1, (k, false));
+            sin_var.push(a.vars.0);
+            cos_var.push(a.vars.1);
+            joint_of.push(match &a.source {
+                AngleSource::Joint { joint, .. } => Some(joint + 1),
+                AngleSource::Constant(_) => None,
+            });
+        }
+        Angles {
+            of_var,
+            joint_of,
+            sin_var,
+            cos_var,
+        }
+    }
+}
+
+/// The normal form of `sin`/`cos` of a sum of angles.
+fn sum_nf(ring: &Ring, ang: &Angles, t: &SumTrig) -> Poly {
+    let (mut s, mut c) = (Poly::zero(), Poly::one());
+    for &a in &t.angles {
+        let (sa, ca) = (Poly::var(ang.sin_var[a]), Poly::var(ang.cos_var[a]));
+        let ns = ring.mul(&s, &ca).add(&ring.mul(&c, &sa));
+        let nc = ring.mul(&c, &ca).sub(&ring.mul(&s, &sa));
+        s = ns;
+        c = nc;
+    }
+    if t.sin {
+        s
+    } else {
+        c
+    }
+}
+
+/// Rewrite `p` as a sum of trigonometric terms; `None` if the check fails.
+pub fn rewrite(chain: &Chain, p: &Poly) -> Option<Vec<TrigTerm>> {
+    let ring = &chain.graph.ring;
+    let ang = Angles::new(chain);
+    let mut rest = p.clone();
+    let mut out = Vec::new();
+    let mut guard = 0;
+    while !rest.is_empty() {
+        guard += 1;
+        if guard > 10_000 {
+            return None;
+        }
+        // The term with the most trigonometric variables first.
+        let (mono, coef) = rest
+            .terms()
+            .max_by_key(|(m, _)| m.iter().filter(|(v, _)| ang.of_var.contains_key(v)).count())
+            .map(|(m, c)| (m.clone(), c.clone()))?;
+        let (trig_vars, other): (Mono, Mono) =
+            mono.iter().partition(|(v, _)| ang.of_var.contains_key(v));
+        // Singles: every variable on its own (always exact, absorbs one term).
+        let singles: Vec<(usize, bool, u32)> = trig_vars
+            .iter()
+            .map(|&(v, e)| {
+                let (a, s) = ang.of_var[&v];
+                (a, s, e)
+            })
+            .collect();
+        let mut best: Option<(usize, TrigTerm, Poly)> = None;
+        for grouping in groupings(&singles, &ang) {
+            let mut nf = Poly::constant(Rat::one());
+            for t in &grouping {
+                nf = ring.mul(&nf, &sum_nf(ring, &ang, t));
+            }
+            // Coefficient so that the chosen monomial matches.
+            let k = nf
+                .terms()
+                .find(|(m, _)| **m == trig_vars)
+                .map(|(_, c)| c.clone());
+            let Some(k) = k else { continue };
+            let c = &coef / &k;
+            let term_nf = ring.mul(&nf, &Poly::from_terms([(other.clone(), c.clone())]));
+            let next = rest.sub(&term_nf);
+            let gain = rest.len().saturating_sub(next.len());
+            if gain > 0 && best.as_ref().is_none_or(|(g, _, _)| gain > *g) {
+                best = Some((
+                    gain,
+                    TrigTerm {
+                        coef: c,
+                        rest: other.clone(),
+                        trig: grouping,
+                    },
+                    next,
+                ));
+            }
+        }
+        let (_, term, next) = best?;
+        out.push(term);
+        rest = next;
+    }
+    // Read in joint order: a2*cos(q2) + a3*cos(q2+q3) + d5*sin(q2+q3+q4).
+    out.sort_by(|a, b| {
+        let key = |t: &TrigTerm| {
+            let mut angles: Vec<usize> = t.trig.iter().flat_map(|f| f.angles.clone()).collect();
+            angles.sort_unstable();
+            (angles.len(), angles, t.rest.clone())
+        };
+        key(a).cmp(&key(b))
+    });
+    // Check: the terms expand back to p.
+    let mut sum = Poly::zero();
+    for t in &out {
+        let mut nf = Poly::from_terms([(t.rest.clone(), t.coef.clone())]);
+        for f in &t.trig {
+            nf = ring.mul(&nf, &sum_nf(ring, &ang, f));
+        }
+        sum = sum.add(&nf);
+    }
+    (sum == *p).then_some(out)
+}
+
+/// Ways to group a term's trigonometric variables into sums over consecutive joints.
+fn groupings(singles: &[(usize, bool, u32)], ang: &Angles) -> Vec<Vec<SumTrig>> {
+    // Variables with exponent 1 on joint angles can join runs; the rest stay single.
+    let mut fixed = Vec::new();
+    let mut runnable: Vec<(usize, bool)> = Vec::new();
+    for &(a, s, e) in singles {
+        if e == 1 && ang.joint_of[a].is_some() {
+            runnable.push((a, s));
+        } else {
+            for _ in 0..e {
+                fixed.push(SumTrig {
+                    sin: s,
+                    angles: vec![a],
+                });
+            }
+        }
+    }
+    runnable.sort_by_key(|&(a, _)| ang.joint_of[a]);
+    // All ways to cut the sorted list into runs of consecutive joints.
+    let mut results = Vec::new();
+    let n = runnable.len();
+    if n == 0 {
+        return vec![fixed];
+    }
+    for mask in 0u32..(1 << (n - 1)) {
+        // bit i set: cut between i and i+1
+        let mut groups: Vec<SumTrig> = fixed.clone();
+        let mut cur: Vec<(usize, bool)> = vec![runnable[0]];
+        let mut ok = true;
+        for i in 1..n {
+            let cut = mask & (1 << (i - 1)) != 0;
+            let consecutive =
+                ang.joint_of[runnable[i].0] == ang.joint_of[runnable[i - 1].0].map(|j| j + 1);
+            if cut {
+                groups.push(close(&cur));
+                cur = vec![runnable[i]];
+            } else if consecutive {
+                cur.push(runnable[i]);
+            } else {
+                ok = false;
+                break;
+            }
+        }
+        if !ok {
+            continue;
+        }
+        groups.push(close(&cur));
+        results.push(groups);
+        if results.len() > 64 {
+            break;
+        }
+    }
+    results
+}
+
+fn close(run: &[(usize, bool)]) -> SumTrig {
+    let sines = run.iter().filter(|(_, s)| *s).count();
+    SumTrig {
+        sin: sines % 2 == 1,
+        angles: run.iter().map(|(a, _)| *a).collect(),
+    }
+}
+
+/// Text of an angle sum: `q2+q3`.
+pub fn angle_text(chain: &Chain, angles: &[usize]) -> String {
+    let parts: Vec<String> = angles
+        .iter()
+        .map(|&a| match &chain.angles[a].source {
+            AngleSource::Joint { joint, offset } if offset.is_zero() => format!("q{}", joint + 1),
+            AngleSource::Joint { joint, offset } => format!("(q{} + {offset})", joint + 1),
+            AngleSource::Constant(v) => format!("({v})"),
+        })
+        .collect();
+    parts.join("+")
+}
+
+/// Plain-text formula of a rewritten polynomial (`a2*cos(q2) + a3*cos(q2+q3)`).
+pub fn text(chain: &Chain, terms: &[TrigTerm]) -> String {
+    let ring = &chain.graph.ring;
+    let mut s = String::new();
+    for (i, t) in terms.iter().enumerate() {
+        let neg = t.coef.is_negative();
+        let a = t.coef.abs();
+        s.push_str(match (i, neg) {
+            (0, true) => "-",
+            (0, false) => "",
+            (_, true) => " - ",
+            (_, false) => " + ",
+        });
+        let mut parts: Vec<String> = Vec::new();
+        if !a.is_one() {
+            parts.push(fmt_rat(&a));
+        }
+        for &(v, e) in &t.rest {
+            let n = ring.name(v).to_string();
+            parts.push(if e == 1 { n } else { format!("{n}^{e}") });
+        }
+        for f in &t.trig {
+            parts.push(format!(
+                "{}({})",
+                if f.sin { "sin" } else { "cos" },
+                angle_text(chain, &f.angles)
+            ));
+        }
+        if parts.is_empty() {
+            parts.push("1".into());
+        }
+        s.push_str(&parts.join("*"));
+    }
+    if s.is_empty() {
+        s.push('0');
+    }
+    s
+}
+
+/// LaTeX of a rewritten polynomial (`a_{2} \cos(q_{2}) + …`).
+pub fn latex(chain: &Chain, terms: &[TrigTerm]) -> String {
+    let ring = &chain.graph.ring;
+    let sub = |name: &str| -> String {
+        let i = name
+            .find(|c: char| c.is_ascii_digit())
+            .unwrap_or(name.len());
+        let (head, tail) = name.split_at(i);
+        if tail.is_empty() {
+            head.to_string()
+        } else {
+            format!("{head}_{{{tail}}}")
+        }
+    };
+    let mut s = String::new();
+    for (i, t) in terms.iter().enumerate() {
+        let neg = t.coef.is_negative();
+        let a = t.coef.abs();
+        s.push_str(match (i, neg) {
+            (0, true) => "-",
+            (0, false) => "",
+            (_, true) => " - ",
+            (_, false) => " + ",
+        });
+        let mut parts: Vec<String> = Vec::new();
+        if !a.is_one() {
+            parts.push(fmt_rat(&a));
+        }
+        for &(v, e) in &t.rest {
+            let n = sub(ring.name(v));
+            parts.push(if e == 1 { n } else { format!("{n}^{{{e}}}") });
+        }
+        for f in &t.trig {
+            let arg: Vec<String> = angle_text(chain, &f.angles)
+                .split('+')
+                .map(|x| sub(x.trim()))
+                .collect();
+            parts.push(format!(
+                "\\{}({})",
+                if f.sin { "sin" } else { "cos" },
+                arg.join(" + ")
+            ));
+        }
+        if parts.is_empty() {
+            parts.push("1".into());
+        }
+        s.push_str(&parts.join(" "));
+    }
+    if s.is_empty() {
+        s.push('0');
+    }
+    s
+}
