@@ -15,7 +15,20 @@ extern crate self as kinegen;
 
 pub use kinegen_macro::kinematics;
 
+pub mod adapters;
+pub mod analytic;
+pub mod control;
+pub mod error;
+pub mod forces;
+pub mod ik;
+pub mod linalg;
+pub mod manipulability;
 pub mod math;
+pub mod pose_error;
+pub mod velocity;
+
+pub use error::SolveError;
+pub mod trajectory;
 
 /// A robot arm with `N` joints whose kinematics kinegen generated.
 ///
@@ -65,4 +78,26 @@ pub trait TaskKinematics<const N: usize, const M: usize>: Kinematics<N> {
     fn task_jacobian_det(&self, _q: &[f64; N]) -> Option<f64> {
         None
     }
+}
+
+/// A closed form the generated code computes, for people: `J[0][1]`, `det`, …
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Formula {
+    /// What it is (`"T[0][3]"`, `"J[2][1]"`, `"det"`, `"t4"` for a shared intermediate).
+    pub name: &'static str,
+    /// Plain text, Rust syntax (`a2 * c2 + a3 * c23`).
+    pub text: &'static str,
+    /// LaTeX (`a_{2} c_{2} + a_{3} c_{23}`).
+    pub latex: &'static str,
+}
+
+/// A singular configuration family: a factor of `det J` and the condition that it vanishes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Singularity {
+    /// `"sin(q3) = 0"`.
+    pub condition: &'static str,
+    /// LaTeX of the condition.
+    pub latex: &'static str,
+    /// Joints (1-based) the factor depends on; empty for a parameter (a design singularity).
+    pub joints: &'static [usize],
 }

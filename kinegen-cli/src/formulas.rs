@@ -1,0 +1,469 @@
+//! `kinegen show`: the closed forms of a robot, as terminal text or a LaTeX body.
+//!
+//! Each section is one output of the generated code (`fk`, `jacobian`, …) with the
+//! same sharing as the generated function: the inputs (`s1 = sin(q1)`), the shared
+//! intermediates (`c23 = cos(q2 + q3) = …`, `t1 = …`), then the entries. The formulas
+//! are the engine's own ([`Coder::body`]), re-printed by [`kinegen_core::latex`].
+
+use std::collections::BTreeSet;
+use std::fmt::Write;
+
+use kinegen_core::chain::AngleSource;
+use kinegen_core::code::{Body, Coder, OpCount};
+use kinegen_core::graph::Id;
+use kinegen_core::latex::{self, latex_name, Block, Equation};
+use kinegen_core::model::Model;
+use kinegen_core::{dh, Robot};
+
+use crate::det_hook::{Determinant, Determinants};
+
+/// What `show` prints.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum What {
+    /// Forward kinematics (tool pose).
+    Fk,
+    /// World-frame geometric Jacobian (and the task Jacobian, if the robot has one).
+    Jacobian,
+    /// Jacobian determinant.
+    Det,
+    /// Where the determinant vanishes.
+    Singularities,
+    /// Everything.
+    All,
+}
+
+/// One named formula: `lhs = meaning = rhs` (the meaning, when known, in words of
+/// the joint angles: `cos(q2 + q3)`).
+#[derive(Clone, Debug, PartialEq)]
+struct Line {
+    text_lhs: String,
+    latex_lhs: String,
+    meaning: Option<(String, String)>,
+    /// Rust-syntax formula (rendered with `kinegen_core::latex`), or `None` when the
+    /// meaning is the whole definition (`s1 = sin(q1)`).
+    rust: Option<String>,
+}
+
+/// One output with its definitions.
+#[derive(Clone, Debug)]
+struct Section {
+    title: String,
+    ops: Option<OpCount>,
+    /// Shown when the section has no formulas (a missing determinant).
+    note: Option<String>,
+    defs: Vec<Line>,
+    entries: Vec<Line>,
+}
+
+/// The text of `show` for `what`; `latex` selects a LaTeX document body.
+pub fn show(robot: &Robot, model: &Model, dets: &Determinants, what: What, latex: bool) -> String {
+    let coder = Coder::new(robot, &model.chain);
+    let want = |w: What| what == w || what == What::All;
+    let n = robot.dof();
+    let mut sections = Vec::new();
+    if want(What::Fk) {
+        let ids: Vec<Id> = model.fk_rows.iter().flatten().copied().collect();
+        sections.push(section(
+            robot,
+            model,
+            &coder,
+            &ids,
+            "Forward kinematics: tool pose T in the world frame (its last row is [0 0 0 1])",
+            "T",
+            4,
+        ));
+    }
+    if want(What::Jacobian) {
+        let ids: Vec<Id> = model.jacobian.iter().flatten().copied().collect();
+        sections.push(section(
+            robot,
+            model,
+            &coder,
+            &ids,
+            "Geometric Jacobian J in the world frame, rows [vx vy vz ωx ωy ωz]",
+            "J",
+            n,
+        ));
+        if let Some(task) = &robot.task {
+            let ids: Vec<Id> = model.task.iter().flatten().copied().collect();
+            let rows: Vec<&str> = task.iter().map(|r| r.name()).collect();
+            sections.push(section(
+                robot,
+                model,
+                &coder,
+                &ids,
+                &format!("Task Jacobian Jt: rows [{}] of J", rows.join(" ")),
+                "Jt",
+                n,
+            ));
+        }
+    }
+    let det_list: [(&str, &str, &Option<Determinant>); 2] = [
+        ("det J", r"\det J", &dets.det),
+        ("det Jt", r"\det J_{t}", &dets.det_task),
+    ];
+    if want(What::Det) {
+        let mut any = false;
+        for (name, tex, d) in det_list {
+            if let Some(d) = d {
+                any = true;
+                let body = coder.body(&[d.node]);
+                sections.push(Section {
+                    title: format!("Jacobian determinant {name}"),
+                    ops: Some(body.ops),
+                    note: None,
+                    defs: vec![],
+                    entries: vec![Line {
+                        text_lhs: name.into(),
+                        latex_lhs: tex.into(),
+                        meaning: Some((d.text.clone(), d.latex.clone())),
+                        rust: None,
+                    }],
+                });
+            }
+        }
+        if !any {
+            sections.push(missing("Jacobian determinant", &dets.missing));
+        }
+    }
+    if want(What::Singularities) {
+        let mut any = false;
+        for (name, _, d) in det_list {
+            if let Some(d) = d {
+                any = true;
+                let entries = d
+                    .factors
+                    .iter()
+                    .map(|f| {
+                        let joints: Vec<String> =
+                            f.joints.iter().map(|j| format!("q{j}")).collect();
+                        Line {
+                            text_lhs: f.text.clone(),
+                            latex_lhs: f.latex.clone(),
+                            meaning: Some((
+                                format!(
+                                    "0   ({}{})",
+                                    if joints.is_empty() {
+                                        "a link parameter: singular for every q".to_string()
+                                    } else {
+                                        format!("depends on {}", joints.join(", "))
+                                    },
+                                    if f.power > 1 {
+                                        format!("; power {}", f.power)
+                                    } else {
+                                        String::new()
+                                    }
+                                ),
+                                "0".into(),
+                            )),
+                            rust: None,
+                        }
+                    })
+                    .collect();
+                sections.push(Section {
+                    title: format!("Singularities: {name} = 0 where one of these factors is zero"),
+                    ops: None,
+                    note: None,
+                    defs: vec![],
+                    entries,
+                });
+            }
+        }
+        if !any {
+            sections.push(missing("Singularities", &dets.missing));
+        }
+    }
+    if latex {
+        render_latex(robot, &sections)
+    } else {
+        render_text(robot, &sections)
+    }
+}
+
+fn missing(title: &str, why: &str) -> Section {
+    Section {
+        title: title.into(),
+        ops: None,
+        note: Some(why.into()),
+        defs: vec![],
+        entries: vec![],
+    }
+}
+
+/// A section for the outputs `ids`, named `matrix[r][c]` row-major with `cols` columns.
+fn section(
+    robot: &Robot,
+    model: &Model,
+    coder: &Coder,
+    ids: &[Id],
+    title: &str,
+    matrix: &str,
+    cols: usize,
+) -> Section {
+    let body = coder.body(ids);
+    let mut defs = inputs(robot, model, &body);
+    defs.extend(body.defs.iter().map(|(name, f)| Line {
+        text_lhs: name.clone(),
+        latex_lhs: latex_name(name),
+        meaning: angle_sum(name),
+        rust: Some(f.clone()),
+    }));
+    let entries = body
+        .outputs
+        .iter()
+        .enumerate()
+        .map(|(k, f)| {
+            let (r, c) = (k / cols, k % cols);
+            Line {
+                text_lhs: format!("{matrix}[{r}][{c}]"),
+                latex_lhs: format!("{}_{{{},{}}}", latex_matrix(matrix), r + 1, c + 1),
+                meaning: None,
+                rust: Some(f.clone()),
+            }
+        })
+        .collect();
+    Section {
+        title: title.into(),
+        ops: Some(body.ops),
+        note: None,
+        defs,
+        entries,
+    }
+}
+
+fn latex_matrix(m: &str) -> String {
+    match m.strip_prefix('J') {
+        Some("t") => "(J_{t})".into(),
+        _ => m.into(),
+    }
+}
+
+/// `s1 = sin(q1)`, `c1 = cos(q1)` for the angles the body reads.
+fn inputs(robot: &Robot, model: &Model, body: &Body) -> Vec<Line> {
+    let used = identifiers(body);
+    let ring = &model.chain.graph.ring;
+    let mut out = Vec::new();
+    for a in &model.chain.angles {
+        let arg = match &a.source {
+            AngleSource::Joint { joint, offset } => with_offset(&format!("q{}", joint + 1), offset),
+            AngleSource::Constant(v) => v.to_string(),
+        };
+        let arg_tex = latex::to_latex(&arg)
+            .unwrap_or_else(|_| format!(r"\text{{{}}}", latex::escape_text(&arg)));
+        for (var, f) in [(a.vars.0, "sin"), (a.vars.1, "cos")] {
+            let name = ring.name(var);
+            if used.contains(name) {
+                out.push(Line {
+                    text_lhs: name.to_string(),
+                    latex_lhs: latex_name(name),
+                    meaning: Some((
+                        format!("{f}({arg})"),
+                        format!(r"\{f}\left({arg_tex}\right)"),
+                    )),
+                    rust: None,
+                });
+            }
+        }
+    }
+    let _ = robot;
+    out
+}
+
+fn with_offset(q: &str, offset: &kinegen_core::value::Value) -> String {
+    let o = offset.to_string();
+    if o == "0" {
+        q.to_string()
+    } else if let Some(r) = o.strip_prefix('-') {
+        format!("{q} - {r}")
+    } else {
+        format!("{q} + {o}")
+    }
+}
+
+/// Identifiers in a body's formulas.
+fn identifiers(body: &Body) -> BTreeSet<String> {
+    let mut set = BTreeSet::new();
+    for f in body.defs.iter().map(|(_, f)| f).chain(&body.outputs) {
+        for w in f.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
+            if w.starts_with(|c: char| c.is_ascii_alphabetic()) {
+                set.insert(w.to_string());
+            }
+        }
+    }
+    set
+}
+
+/// The engine names the sine and cosine of a sum of consecutive joint angles after the
+/// joints (`c23`; `c1_2_3` with ten or more joints): spell out which sum.
+fn angle_sum(name: &str) -> Option<(String, String)> {
+    let (f, rest) = match name.split_at(1) {
+        ("s", r) => ("sin", r),
+        ("c", r) => ("cos", r),
+        _ => return None,
+    };
+    let joints: Vec<&str> = if rest.contains('_') {
+        rest.split('_').collect()
+    } else {
+        rest.split_terminator("").skip(1).collect()
+    };
+    if joints.len() < 2
+        || !joints
+            .iter()
+            .all(|j| !j.is_empty() && j.chars().all(|c| c.is_ascii_digit()))
+    {
+        return None;
+    }
+    let text = joints
+        .iter()
+        .map(|j| format!("q{j}"))
+        .collect::<Vec<_>>()
+        .join(" + ");
+    let tex = joints
+        .iter()
+        .map(|j| format!("q_{{{j}}}"))
+        .collect::<Vec<_>>()
+        .join(" + ");
+    Some((format!("{f}({text})"), format!(r"\{f}\left({tex}\right)")))
+}
+
+fn header_text(robot: &Robot) -> String {
+    let conv = match robot.convention {
+        dh::Convention::Standard => "standard",
+        dh::Convention::Modified => "modified (Craig)",
+    };
+    let mut s = format!("{} — {} joints, {conv} DH\n", robot.name, robot.dof());
+    if !robot.params.is_empty() {
+        let ps: Vec<String> = robot
+            .params
+            .iter()
+            .map(|p| format!("{} = {}", p.name, p.value))
+            .collect();
+        let _ = writeln!(s, "parameters: {}", ps.join(", "));
+    }
+    s
+}
+
+fn ops_text(o: &OpCount) -> String {
+    format!(
+        "{} ops: {} add, {} mul, {} div, {} neg; {} sin_cos",
+        o.total(),
+        o.add,
+        o.mul,
+        o.div,
+        o.neg,
+        o.trig
+    )
+}
+
+fn rhs_text(l: &Line) -> String {
+    let mut parts = Vec::new();
+    if let Some((m, _)) = &l.meaning {
+        parts.push(m.clone());
+    }
+    if let Some(r) = &l.rust {
+        // The engine's formulas always parse; fall back to them verbatim if not.
+        parts.push(latex::to_text(r).unwrap_or_else(|_| r.clone()));
+    }
+    parts.join(" = ")
+}
+
+fn render_text(robot: &Robot, sections: &[Section]) -> String {
+    let mut s = header_text(robot);
+    for sec in sections {
+        let _ = write!(s, "\n== {}", sec.title);
+        if let Some(o) = &sec.ops {
+            let _ = write!(s, "  [{}]", ops_text(o));
+        }
+        s.push('\n');
+        if let Some(n) = &sec.note {
+            let _ = writeln!(s, "  {n}");
+        }
+        if !sec.defs.is_empty() {
+            s.push_str("where\n");
+            for l in &sec.defs {
+                let _ = writeln!(s, "  {} = {}", l.text_lhs, rhs_text(l));
+            }
+        }
+        for l in &sec.entries {
+            let _ = writeln!(s, "{} = {}", l.text_lhs, rhs_text(l));
+        }
+    }
+    s
+}
+
+fn rhs_latex(l: &Line) -> String {
+    let mut parts = Vec::new();
+    if let Some((_, m)) = &l.meaning {
+        parts.push(m.clone());
+    }
+    if let Some(r) = &l.rust {
+        parts.push(
+            latex::to_latex(r).unwrap_or_else(|_| format!(r"\text{{{}}}", latex::escape_text(r))),
+        );
+    }
+    parts.join(" = ")
+}
+
+fn render_latex(robot: &Robot, sections: &[Section]) -> String {
+    let mut blocks = Vec::new();
+    let mut intro = latex::escape_text(header_text(robot).trim_end()).replace('\n', "\\\\\n");
+    intro
+        .push_str(r"\\ Indices are 1-based; $s_{i} = \sin q_{i}$, $c_{ij} = \cos(q_{i} + q_{j})$.");
+    blocks.push(Block {
+        title: intro,
+        equations: vec![],
+    });
+    for sec in sections {
+        let mut title = format!(r"\paragraph{{{}}}", latex::escape_text(&sec.title));
+        if let Some(o) = &sec.ops {
+            let _ = write!(title, " {}.", latex::escape_text(&ops_text(o)));
+        }
+        if let Some(n) = &sec.note {
+            let _ = write!(title, " {}", latex::escape_text(n));
+        }
+        if !sec.defs.is_empty() {
+            blocks.push(Block {
+                title: title.clone() + " Where",
+                equations: sec
+                    .defs
+                    .iter()
+                    .map(|l| Equation {
+                        lhs: l.latex_lhs.clone(),
+                        rhs: rhs_latex(l),
+                    })
+                    .collect(),
+            });
+            title = String::new();
+        }
+        blocks.push(Block {
+            title,
+            equations: sec
+                .entries
+                .iter()
+                .map(|l| Equation {
+                    lhs: l.latex_lhs.clone(),
+                    rhs: rhs_latex(l),
+                })
+                .collect(),
+        });
+    }
+    latex::latex_document_body(&robot.name, &blocks)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn angle_sums_are_spelled_out() {
+        assert_eq!(angle_sum("c23").unwrap().0, "cos(q2 + q3)");
+        assert_eq!(
+            angle_sum("s234").unwrap().1,
+            r"\sin\left(q_{2} + q_{3} + q_{4}\right)"
+        );
+        assert_eq!(angle_sum("c1_2_3").unwrap().0, "cos(q1 + q2 + q3)");
+        assert_eq!(angle_sum("c1"), None);
+        assert_eq!(angle_sum("t12"), None);
+        assert_eq!(angle_sum("s_k1"), None);
+    }
+}

@@ -1,0 +1,116 @@
+//! The `kinegen` command: a robot's closed-form kinematics for people and tools.
+//!
+//! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all] [--latex]`
+//! - `kinegen rust ROBOT` — the code `kinematics!` generates, pretty-printed
+//! - `kinegen eval ROBOT --q 0.1,0.2,… [--json]`
+//! - `kinegen stats ROBOT [--json]`
+//!
+//! ROBOT is a TOML file (`robots/ur5.toml`) or the name of a shipped robot (`ur5`).
+//! Every command is a thin caller of `kinegen_core`; [`run`] returns the text to print,
+//! so it is testable without a process.
+
+pub mod det_hook;
+pub mod error;
+pub mod eval;
+pub mod formulas;
+pub mod robots;
+pub mod stats;
+
+use clap::{Parser, Subcommand};
+use kinegen_core::model::Model;
+use kinegen_core::{generate, ItemHeader};
+
+pub use error::CliError;
+pub use formulas::What;
+
+/// Closed-form robot kinematics from DH tables.
+#[derive(Debug, Parser)]
+#[command(name = "kinegen", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Show the closed forms (terminal text, or a LaTeX document body).
+    Show {
+        /// A TOML file, or a shipped robot's name (ur5, puma560, planar_rr, …).
+        robot: String,
+        /// Which outputs.
+        #[arg(long, value_enum, default_value = "all")]
+        what: What,
+        /// Print a LaTeX document body (amsmath `align*`) instead of text.
+        #[arg(long)]
+        latex: bool,
+    },
+    /// Print the Rust code `kinematics!` generates for the robot (`pub struct <Name>`).
+    Rust {
+        /// A TOML file, or a shipped robot's name.
+        robot: String,
+    },
+    /// Evaluate the generated formulas at a configuration.
+    Eval {
+        /// A TOML file, or a shipped robot's name.
+        robot: String,
+        /// Joint values, comma-separated (radians / metres), one per joint.
+        #[arg(long, allow_hyphen_values = true)]
+        q: String,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Operation counts of the generated code and the engine's time.
+    Stats {
+        /// A TOML file, or a shipped robot's name.
+        robot: String,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Run a parsed command; `Ok` is the text for stdout.
+pub fn run(cli: &Cli) -> Result<String, CliError> {
+    match &cli.command {
+        Command::Show { robot, what, latex } => {
+            let (robot, options) = robots::load(robot)?;
+            let mut model = Model::build(&robot, &options);
+            let dets = det_hook::determinants(&robot, &mut model);
+            Ok(formulas::show(&robot, &model, &dets, *what, *latex))
+        }
+        Command::Rust { robot } => {
+            let (robot, options) = robots::load(robot)?;
+            // Exactly the macro's call for `pub struct <Name>` (kinegen-macro's expand).
+            Ok(generate(&robot, &ItemHeader::public(&robot.name), &options).pretty())
+        }
+        Command::Eval { robot, q, json } => {
+            let (robot, options) = robots::load(robot)?;
+            let q = eval::parse_q(q, robot.dof())?;
+            let mut model = Model::build(&robot, &options);
+            let dets = det_hook::determinants(&robot, &mut model);
+            let v = eval::values(&robot, &model, &dets, &q);
+            Ok(if *json {
+                format!("{}\n", eval::to_json(&v))
+            } else {
+                eval::to_table(&robot, &q, &v, &dets.missing)
+            })
+        }
+        Command::Stats { robot, json } => {
+            let (robot, options) = robots::load(robot)?;
+            let t = std::time::Instant::now();
+            let generated = generate(&robot, &ItemHeader::public(&robot.name), &options);
+            let time_ms = t.elapsed().as_secs_f64() * 1e3;
+            let mut model = Model::build(&robot, &options);
+            let dets = det_hook::determinants(&robot, &mut model);
+            let s = stats::stats(&robot, &model, &dets, &generated, time_ms);
+            Ok(if *json {
+                format!("{}\n", stats::to_json(&s))
+            } else {
+                stats::to_table(&robot, &s, &dets.missing)
+            })
+        }
+    }
+}

@@ -1,0 +1,89 @@
+//! `kinegen stats`: operation counts of the generated code, and the engine's wall time.
+
+use std::fmt::Write;
+
+use kinegen_core::code::{Coder, OpCount};
+use kinegen_core::model::Model;
+use kinegen_core::{Generated, Robot};
+use serde_json::{json, Value};
+
+use crate::det_hook::Determinants;
+
+/// Counts per output and the engine time.
+#[derive(Clone, Debug)]
+pub struct Stats {
+    /// `fk` as generated.
+    pub fk: OpCount,
+    /// `jacobian` as generated.
+    pub jacobian: OpCount,
+    /// The determinant's code, where the engine has it.
+    pub det: Option<OpCount>,
+    /// Wall time of `generate`, milliseconds.
+    pub time_ms: f64,
+}
+
+/// Counts from the generated code itself (`Generated::stats`, the counts of the very
+/// bodies emitted) and, for the determinant, from its own body.
+pub fn stats(
+    robot: &Robot,
+    model: &Model,
+    dets: &Determinants,
+    generated: &Generated,
+    time_ms: f64,
+) -> Stats {
+    let det = dets
+        .det
+        .as_ref()
+        .or(dets.det_task.as_ref())
+        .map(|d| Coder::new(robot, &model.chain).body(&[d.node]).ops);
+    Stats {
+        fk: generated.stats.fk,
+        jacobian: generated.stats.jacobian,
+        det,
+        time_ms,
+    }
+}
+
+fn ops_json(o: &OpCount) -> Value {
+    json!({"add": o.add, "mul": o.mul, "div": o.div, "neg": o.neg, "trig": o.trig, "total": o.total()})
+}
+
+/// `{"fk": {…}, "jacobian": {…}, "det": {…} or null, "time_ms": …}`.
+pub fn to_json(s: &Stats) -> Value {
+    json!({
+        "fk": ops_json(&s.fk),
+        "jacobian": ops_json(&s.jacobian),
+        "det": s.det.as_ref().map(ops_json),
+        "time_ms": s.time_ms,
+    })
+}
+
+/// A readable table.
+pub fn to_table(robot: &Robot, s: &Stats, missing: &str) -> String {
+    let mut out = format!(
+        "{} — operations of the generated code (after sharing; a subtraction counts as an add)\n\n{:<10}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}\n",
+        robot.name, "output", "add", "mul", "div", "neg", "total", "trig"
+    );
+    let row = |out: &mut String, name: &str, o: &OpCount| {
+        let _ = writeln!(
+            out,
+            "{name:<10}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}",
+            o.add,
+            o.mul,
+            o.div,
+            o.neg,
+            o.total(),
+            o.trig
+        );
+    };
+    row(&mut out, "fk", &s.fk);
+    row(&mut out, "jacobian", &s.jacobian);
+    match &s.det {
+        Some(d) => row(&mut out, "det", d),
+        None => {
+            let _ = writeln!(out, "{:<10}{missing}", "det");
+        }
+    }
+    let _ = writeln!(out, "\nengine time: {:.1} ms", s.time_ms);
+    out
+}

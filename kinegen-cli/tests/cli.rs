@@ -1,0 +1,360 @@
+//! Real invocations of the `kinegen` binary.
+
+use std::path::PathBuf;
+
+use assert_cmd::Command;
+use kinegen_core::{generate, numeric, toml_input, ItemHeader};
+use predicates::prelude::*;
+use serde_json::Value;
+
+fn kinegen() -> Command {
+    Command::cargo_bin("kinegen").unwrap()
+}
+
+fn robot_file(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../robots")
+        .join(format!("{name}.toml"))
+}
+
+fn stdout(args: &[&str]) -> String {
+    let out = kinegen()
+        .args(args)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    String::from_utf8(out).unwrap()
+}
+
+/// A failing invocation: exit 2, nothing on stdout, one `kinegen: error:` line on stderr
+/// (returned), and no panic.
+fn fails(args: &[&str]) -> String {
+    let out = kinegen()
+        .args(args)
+        .assert()
+        .code(2)
+        .stdout("")
+        .get_output()
+        .stderr
+        .clone();
+    let err = String::from_utf8(out).unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("kinegen: error: "), "{err}");
+    err
+}
+
+#[test]
+fn show_planar_rr() {
+    insta::assert_snapshot!("show_planar_rr", stdout(&["show", "planar_rr"]));
+}
+
+#[test]
+fn show_ur5() {
+    insta::assert_snapshot!("show_ur5", stdout(&["show", "ur5"]));
+}
+
+#[test]
+fn show_latex_planar_rr() {
+    insta::assert_snapshot!(
+        "show_latex_planar_rr",
+        stdout(&["show", "planar_rr", "--latex"])
+    );
+}
+
+#[test]
+fn show_what_selects_sections_and_files_work_like_names() {
+    let fk = stdout(&["show", "ur5", "--what", "fk"]);
+    assert!(
+        fk.contains("== Forward kinematics") && !fk.contains("== Geometric Jacobian"),
+        "{fk}"
+    );
+    assert!(fk.contains("c23 = cos(q2 + q3) = "), "{fk}");
+    let path = robot_file("ur5");
+    assert_eq!(
+        stdout(&["show", path.to_str().unwrap(), "--what", "fk"]),
+        fk
+    );
+    let j = stdout(&["show", "planar_rr", "--what", "jacobian", "--latex"]);
+    assert!(
+        j.contains(r"J_{1,1} &= -\left(s_{1}\,L_{1} + t_{2}\right)"),
+        "{j}"
+    );
+    assert!(!j.contains("Forward kinematics"), "{j}");
+    for what in ["det", "singularities"] {
+        let s = stdout(&["show", "puma560", "--what", what]);
+        assert!(s.starts_with("PUMA"), "{s}");
+    }
+}
+
+#[test]
+fn shipped_robots_work_from_any_directory() {
+    let out = kinegen()
+        .current_dir("/")
+        .args(["show", "ur5", "--what", "fk"])
+        .assert()
+        .success();
+    assert!(String::from_utf8_lossy(&out.get_output().stdout).starts_with("UR5 — 6 joints"));
+}
+
+/// `kinegen rust` prints what the macro expands to: `kinematics!` calls
+/// `kinegen_core::generate(&robot, &header, &options)` with the header of
+/// `pub struct <Name>` (kinegen-macro/src/expand.rs), which for the file form is
+/// `ItemHeader::public(&robot.name)`. The file form adds one `const _: &str =
+/// include_str!(…)` line for cargo's rebuild tracking, which is not part of the robot.
+#[test]
+fn rust_is_the_macro_expansion() {
+    for name in ["planar_rr", "ur5"] {
+        let (robot, options) = toml_input::load_file(&robot_file(name)).unwrap();
+        let expected = generate(&robot, &ItemHeader::public(&robot.name), &options).pretty();
+        assert_eq!(stdout(&["rust", name]), expected, "{name}");
+    }
+    let planar = stdout(&["rust", "planar_rr"]);
+    assert!(planar.contains("pub struct PlanarRr {"), "{planar}");
+    assert!(
+        planar.contains("impl ::kinegen::Kinematics<2> for PlanarRr"),
+        "{planar}"
+    );
+}
+
+fn matrix(v: &Value) -> Vec<Vec<f64>> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            r.as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        })
+        .collect()
+}
+
+fn assert_close(
+    what: &str,
+    got: &[Vec<f64>],
+    want: impl Fn(usize, usize) -> f64,
+    rows: usize,
+    cols: usize,
+) {
+    assert_eq!(got.len(), rows, "{what}");
+    for (r, row) in got.iter().enumerate() {
+        assert_eq!(row.len(), cols, "{what}");
+        for (c, &x) in row.iter().enumerate() {
+            let w = want(r, c);
+            assert!(
+                (x - w).abs() < 1e-12,
+                "{what}[{r}][{c}]: {x} vs reference {w}"
+            );
+        }
+    }
+}
+
+#[test]
+fn eval_json_matches_the_numeric_reference() {
+    let cases: [(&str, &[f64]); 4] = [
+        ("planar_rr", &[0.3, -1.1]),
+        ("ur5", &[0.1, -0.7, 1.3, 0.4, -2.2, 0.9]),
+        ("puma560", &[0.2, 0.3, -0.4, 1.0, 0.6, -1.5]),
+        ("scara", &[0.5, -0.4, 0.1, 0.7]),
+    ];
+    for (name, q) in cases {
+        let qs: Vec<String> = q.iter().map(|x| x.to_string()).collect();
+        let text = stdout(&["eval", name, "--q", &qs.join(","), "--json"]);
+        let v: Value = serde_json::from_str(&text).unwrap();
+        let (robot, _) = toml_input::load_file(&robot_file(name)).unwrap();
+        let n = robot.dof();
+        let reference = numeric::NumericRobot::new(&robot).unwrap();
+        let t = reference.fk(q).unwrap();
+        assert_close(name, &matrix(&v["fk"]), |r, c| t[(r, c)], 4, 4);
+        let j = reference.jacobian(q).unwrap();
+        assert_close(name, &matrix(&v["jacobian"]), |r, c| j[(r, c)], 6, n);
+        let je = reference.jacobian_ee(q).unwrap();
+        assert_close(name, &matrix(&v["jacobian_ee"]), |r, c| je[(r, c)], 6, n);
+        let m = if robot.task.is_some() {
+            let jt = reference.task_jacobian(q).unwrap();
+            assert_close(
+                name,
+                &matrix(&v["task_jacobian"]),
+                |r, c| jt[(r, c)],
+                jt.nrows(),
+                n,
+            );
+            jt
+        } else {
+            assert!(v["task_jacobian"].is_null(), "{name}");
+            nalgebra::DMatrix::from_fn(6, n, |r, c| j[(r, c)])
+        };
+        let w = v["manipulability"].as_f64().unwrap();
+        assert!(
+            (w - numeric::manipulability(&m)).abs() < 1e-12,
+            "{name}: {w}"
+        );
+        // Null until the engine has the determinant (kinegen-cli/src/det_hook.rs);
+        // once it does, it must agree with the reference.
+        for (key, reference_det) in [
+            ("det", (n == 6).then(|| numeric::det6(&j).unwrap())),
+            (
+                "det_task",
+                robot.task.as_ref().and_then(|_| numeric::det(&m).ok()),
+            ),
+        ] {
+            if let (Some(got), Some(want)) = (v[key].as_f64(), reference_det) {
+                assert!((got - want).abs() < 1e-12, "{name} {key}: {got} vs {want}");
+            } else {
+                assert!(v[key].is_null(), "{name} {key}: {}", v[key]);
+            }
+        }
+    }
+}
+
+#[test]
+fn eval_planar_rr_by_hand() {
+    // x = L1 c1 + L2 c12 with L1 = L2 = 1; √det(Jt Jtᵀ) = |det Jt| = L1 L2 |s2|.
+    let v: Value =
+        serde_json::from_str(&stdout(&["eval", "planar_rr", "--q", "0.3,0.5", "--json"])).unwrap();
+    let x = v["fk"][0][3].as_f64().unwrap();
+    assert!((x - (0.3f64.cos() + 0.8f64.cos())).abs() < 1e-15);
+    assert!((v["manipulability"].as_f64().unwrap() - 0.5f64.sin()).abs() < 1e-14);
+    let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+    assert_eq!(
+        keys,
+        [
+            "fk",
+            "jacobian",
+            "jacobian_ee",
+            "det",
+            "task_jacobian",
+            "det_task",
+            "manipulability"
+        ]
+    );
+}
+
+#[test]
+fn eval_table_is_readable() {
+    let t = stdout(&["eval", "planar_rr", "--q", "0.3,0.5"]);
+    assert!(t.starts_with("planar RR at q = [0.3, 0.5]"), "{t}");
+    assert!(t.contains("   vx    -1.012876    -0.717356"), "{t}");
+    assert!(t.contains("manipulability 0.479425538604"), "{t}");
+}
+
+#[test]
+fn stats_counts_are_the_generated_code_s() {
+    let v: Value = serde_json::from_str(&stdout(&["stats", "ur5", "--json"])).unwrap();
+    let (robot, options) = toml_input::load_file(&robot_file("ur5")).unwrap();
+    let g = generate(&robot, &ItemHeader::public(&robot.name), &options);
+    for (key, ops) in [("fk", g.stats.fk), ("jacobian", g.stats.jacobian)] {
+        let o = &v[key];
+        let get = |k: &str| o[k].as_u64().unwrap() as usize;
+        assert_eq!(
+            [
+                get("add"),
+                get("mul"),
+                get("div"),
+                get("neg"),
+                get("trig"),
+                get("total")
+            ],
+            [ops.add, ops.mul, ops.div, ops.neg, ops.trig, ops.total()],
+            "{key}"
+        );
+        assert_eq!(
+            get("total"),
+            get("add") + get("mul") + get("div") + get("neg")
+        );
+    }
+    // One sin_cos per joint at most.
+    assert!(v["fk"]["trig"].as_u64().unwrap() <= 6);
+    assert!(v["det"].is_null() || v["det"]["total"].is_u64());
+    assert!(v["time_ms"].as_f64().unwrap() > 0.0);
+    let table = stdout(&["stats", "ur5"]);
+    assert!(
+        table.contains(&format!("fk            {:>2}", g.stats.fk.add)),
+        "{table}"
+    );
+    assert!(table.contains("engine time: "), "{table}");
+}
+
+#[test]
+fn missing_file() {
+    let e = fails(&["show", "no/such/robot.toml"]);
+    assert!(
+        e.contains("no/such/robot.toml: cannot read the file"),
+        "{e}"
+    );
+}
+
+#[test]
+fn malformed_toml_names_the_line() {
+    let dir = std::env::temp_dir().join(format!("kinegen-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "name = \"x\"\nconvention = \n").unwrap();
+    let e = fails(&["eval", bad.to_str().unwrap(), "--q", "0"]);
+    assert!(e.contains("bad.toml:2: "), "{e}");
+    let invalid = dir.join("invalid.toml");
+    std::fs::write(
+        &invalid,
+        "name = \"x\"\nconvention = \"standard\"\n[[joints]]\ntype = \"revolute\"\na = 1\nalpha = 0\nd = \"L9\"\n",
+    )
+    .unwrap();
+    let e = fails(&["show", invalid.to_str().unwrap()]);
+    assert!(e.contains("invalid.toml:7: joints[0].d: "), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn wrong_number_of_joint_values() {
+    let e = fails(&["eval", "ur5", "--q", "0.1,0.2"]);
+    assert_eq!(
+        e,
+        "kinegen: error: --q: the robot has 6 joints but 2 joint values were given\n"
+    );
+}
+
+#[test]
+fn non_numeric_joint_value() {
+    let e = fails(&["eval", "planar_rr", "--q", "0.1,abc"]);
+    assert_eq!(
+        e,
+        "kinegen: error: --q: joint value 2 `abc` is not a number\n"
+    );
+    let e = fails(&["eval", "planar_rr", "--q", "inf,0"]);
+    assert_eq!(
+        e,
+        "kinegen: error: --q: joint value 1 `inf` is not a finite number\n"
+    );
+}
+
+#[test]
+fn negative_joint_values_are_values_not_flags() {
+    stdout(&["eval", "planar_rr", "--q", "-0.1,-0.2"]);
+}
+
+#[test]
+fn unknown_robot() {
+    let e = fails(&["stats", "ur99"]);
+    assert!(
+        e.starts_with("kinegen: error: unknown robot `ur99`: not a file, and not one of "),
+        "{e}"
+    );
+    assert!(e.contains("planar_rr") && e.contains("puma560"), "{e}");
+}
+
+#[test]
+fn bad_usage_is_clap_s_exit_2() {
+    kinegen()
+        .args(["show", "ur5", "--what", "torque"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("invalid value 'torque'"));
+    kinegen()
+        .args(["eval", "ur5"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--q"));
+}
