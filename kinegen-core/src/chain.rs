@@ -135,10 +135,18 @@ impl Chain {
             };
             let a = b.length(&j.a);
             let (sa, ca) = b.const_angle(&j.alpha);
-            let rz = Elem::Rot { axis: 2, s: sq, c: cq };
+            let rz = Elem::Rot {
+                axis: 2,
+                s: sq,
+                c: cq,
+            };
             let tz = Elem::Trans { axis: 2, d };
             let tx = Elem::Trans { axis: 0, d: a };
-            let rx = Elem::Rot { axis: 0, s: sa, c: ca };
+            let rx = Elem::Rot {
+                axis: 0,
+                s: sa,
+                c: ca,
+            };
             match robot.convention {
                 Convention::Standard => {
                     // The joint moves about z of the previous frame.
@@ -221,12 +229,13 @@ impl Builder {
             let k = &value.pi * Rat::from_integer(2.into());
             k.is_integer()
         };
-        let offset = if quarter { Value::zero() } else { value.clone() };
+        let offset = if quarter {
+            Value::zero()
+        } else {
+            value.clone()
+        };
         let (s, c) = self.new_angle(
-            AngleSource::Joint {
-                joint: i,
-                offset,
-            },
+            AngleSource::Joint { joint: i, offset },
             format!("{}", i + 1),
         );
         if !quarter {
@@ -406,7 +415,11 @@ mod tests {
             (Rat::new(1.into(), 2.into()), 1.0, 0.0),
             (Rat::new((-1).into(), 2.into()), -1.0, 0.0),
             (Rat::new(1.into(), 3.into()), 3f64.sqrt() / 2.0, 0.5),
-            (Rat::new(3.into(), 4.into()), 0.5f64.sqrt(), -(0.5f64.sqrt())),
+            (
+                Rat::new(3.into(), 4.into()),
+                0.5f64.sqrt(),
+                -(0.5f64.sqrt()),
+            ),
             (Rat::new(7.into(), 6.into()), -0.5, -(3f64.sqrt() / 2.0)),
             (Rat::one(), 0.0, -1.0),
         ] {

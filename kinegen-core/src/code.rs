@@ -266,10 +266,18 @@ impl<'a> Coder<'a> {
             Node::Mul(a, b) => {
                 ops.mul += 1;
                 // Constants first: `0.5 * x`.
-                let (a, b) = if g.as_num(*b).is_some() { (*b, *a) } else { (*a, *b) };
+                let (a, b) = if g.as_num(*b).is_some() {
+                    (*b, *a)
+                } else {
+                    (*a, *b)
+                };
                 let (x, px) = self.expr(a, names, ops);
                 let (y, py) = self.expr(b, names, ops);
-                let x = if px <= 2 && px != 2 { format!("({x})") } else { x };
+                let x = if px <= 2 && px != 2 {
+                    format!("({x})")
+                } else {
+                    x
+                };
                 let y = if py <= 2 { format!("({y})") } else { y };
                 (format!("{x} * {y}"), 2)
             }

@@ -397,7 +397,9 @@ impl Validator {
             if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit()) {
                 self.err(
                     p.clone(),
-                    format!("`{name}` is the name of a joint variable; choose another parameter name"),
+                    format!(
+                        "`{name}` is the name of a joint variable; choose another parameter name"
+                    ),
                 );
                 continue;
             }
@@ -457,10 +459,7 @@ impl Validator {
                 } else {
                     ""
                 };
-                self.err(
-                    path.clone(),
-                    format!("undefined parameter `{name}`{hint}"),
-                );
+                self.err(path.clone(), format!("undefined parameter `{name}`{hint}"));
                 return None;
             }
         }
@@ -499,7 +498,9 @@ impl Validator {
             if !["a", "alpha", "d", "theta", "offset", "limits"].contains(&key.as_str()) {
                 self.err(
                     p,
-                    format!("unknown column `{key}`: expected a, alpha, d, theta, offset or limits"),
+                    format!(
+                        "unknown column `{key}`: expected a, alpha, d, theta, offset or limits"
+                    ),
                 );
             } else if seen.insert(key.as_str(), value).is_some() {
                 self.err(p, format!("column `{key}` given twice"));
@@ -609,10 +610,9 @@ impl Validator {
                         }
                     }
                 }
-                RawValue::List(items) => self.err(
-                    p,
-                    format!("`{key}` needs 3 values, found {}", items.len()),
-                ),
+                RawValue::List(items) => {
+                    self.err(p, format!("`{key}` needs 3 values, found {}", items.len()))
+                }
                 _ => self.err(p, format!("`{key}` must be a list of 3 values")),
             }
         }
@@ -622,7 +622,10 @@ impl Validator {
     fn task(&mut self, raw: &[RawValue], path: &Path) -> Vec<TaskRow> {
         let mut out = Vec::new();
         if raw.is_empty() {
-            self.err(path.clone(), "task rows are empty: list some of x, y, z, rx, ry, rz");
+            self.err(
+                path.clone(),
+                "task rows are empty: list some of x, y, z, rx, ry, rz",
+            );
         }
         for (i, item) in raw.iter().enumerate() {
             let p = path.index(i);

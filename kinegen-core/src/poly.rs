@@ -464,7 +464,11 @@ impl fmt::Display for PolyDisplay<'_> {
             }
             for &(v, e) in m {
                 let n = self.ring.name(v);
-                parts.push(if e == 1 { n.to_string() } else { format!("{n}^{e}") });
+                parts.push(if e == 1 {
+                    n.to_string()
+                } else {
+                    format!("{n}^{e}")
+                });
             }
             f.write_str(&parts.join("*"))?;
         }
@@ -524,7 +528,9 @@ mod tests {
     #[test]
     fn bounded_product_reports_overflow() {
         let mut r = Ring::new();
-        let vars: Vec<Poly> = (0..6).map(|i| Poly::var(r.param(&format!("p{i}")))).collect();
+        let vars: Vec<Poly> = (0..6)
+            .map(|i| Poly::var(r.param(&format!("p{i}"))))
+            .collect();
         let sum = vars.iter().fold(Poly::zero(), |acc, v| acc.add(v));
         let sq = r.mul(&sum, &sum);
         assert_eq!(sq.len(), 21);

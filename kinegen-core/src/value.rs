@@ -206,9 +206,9 @@ pub fn rat_to_f64(r: &Rat) -> f64 {
         }
     }
     // Large numerators or denominators: go through a correctly rounded decimal string.
-    fmt_rat(r)
-        .parse::<f64>()
-        .unwrap_or_else(|_| r.numer().to_f64().unwrap_or(f64::NAN) / r.denom().to_f64().unwrap_or(f64::NAN))
+    fmt_rat(r).parse::<f64>().unwrap_or_else(|_| {
+        r.numer().to_f64().unwrap_or(f64::NAN) / r.denom().to_f64().unwrap_or(f64::NAN)
+    })
 }
 
 /// Why an entry is not a valid value.
@@ -322,7 +322,9 @@ fn tokenize(s: &str) -> Result<Vec<Tok>, ValueError> {
         let c = chars[i];
         if c.is_whitespace() {
             i += 1;
-        } else if c.is_ascii_digit() || (c == '.' && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit())) {
+        } else if c.is_ascii_digit()
+            || (c == '.' && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit()))
+        {
             let start = i;
             while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
                 i += 1;
@@ -342,11 +344,17 @@ fn tokenize(s: &str) -> Result<Vec<Tok>, ValueError> {
             // Rust literal suffixes typed in the macro (`1.0f64`, `2_000`).
             let text: String = chars[start..i].iter().collect();
             let mut rest_end = i;
-            while rest_end < chars.len() && (chars[rest_end].is_alphanumeric() || chars[rest_end] == '_') {
+            while rest_end < chars.len()
+                && (chars[rest_end].is_alphanumeric() || chars[rest_end] == '_')
+            {
                 rest_end += 1;
             }
             let suffix: String = chars[i..rest_end].iter().collect();
-            if !suffix.is_empty() && suffix != "f64" && suffix != "f32" && !suffix.chars().all(|c| c == '_' || c.is_ascii_digit()) {
+            if !suffix.is_empty()
+                && suffix != "f64"
+                && suffix != "f32"
+                && !suffix.chars().all(|c| c == '_' || c.is_ascii_digit())
+            {
                 return Err(ValueError::new(format!("`{text}{suffix}` is not a number")));
             }
             i = rest_end;
@@ -505,7 +513,10 @@ mod tests {
 
     #[test]
     fn f64_round_trips_through_shortest_decimal() {
-        assert_eq!(Value::from_f64(0.089159).unwrap().konst, r(89159, 1_000_000));
+        assert_eq!(
+            Value::from_f64(0.089159).unwrap().konst,
+            r(89159, 1_000_000)
+        );
         assert!(Value::from_f64(f64::NAN).is_err());
         assert!(Value::from_f64(f64::INFINITY).is_err());
     }

@@ -45,7 +45,10 @@ fn robot_strategy() -> impl Strategy<Value = Robot> {
                 .enumerate()
                 .map(|(i, (prismatic, a, alpha, d, theta, named))| {
                     let a = if named {
-                        params.push((format!("a{i}"), RawValue::Number((a * 1000.0).round() / 1000.0)));
+                        params.push((
+                            format!("a{i}"),
+                            RawValue::Number((a * 1000.0).round() / 1000.0),
+                        ));
                         format!("a{i}")
                     } else {
                         format!("{a:.3}")
@@ -63,8 +66,22 @@ fn robot_strategy() -> impl Strategy<Value = Robot> {
                 .collect();
             let frame = |k: f64| {
                 vec![
-                    ("xyz".into(), RawValue::List(vec![RawValue::Number(k), RawValue::Number(0.1), RawValue::Number(-k)])),
-                    ("rpy".into(), RawValue::List(vec![text(format!("{ang:.3}")), text("pi/2".into()), RawValue::Number(0.25)])),
+                    (
+                        "xyz".into(),
+                        RawValue::List(vec![
+                            RawValue::Number(k),
+                            RawValue::Number(0.1),
+                            RawValue::Number(-k),
+                        ]),
+                    ),
+                    (
+                        "rpy".into(),
+                        RawValue::List(vec![
+                            text(format!("{ang:.3}")),
+                            text("pi/2".into()),
+                            RawValue::Number(0.25),
+                        ]),
+                    ),
                 ]
             };
             validate(&RawRobot {

@@ -1,0 +1,132 @@
+//! Validate the parsed input (merged with its TOML file in the file form), report every
+//! error at its place, and call the engine.
+
+use std::path::PathBuf;
+
+use kinegen_core::dh::{validate, DhError, PathSeg, RawRobot};
+use kinegen_core::toml_input::RawFile;
+use kinegen_core::{input, Budget, ItemHeader, Options};
+use proc_macro2::TokenStream;
+use quote::quote;
+use syn::LitStr;
+
+use crate::parse::Input;
+use crate::report;
+
+/// The generated item, or every error found.
+pub fn expand(input: Input) -> syn::Result<TokenStream> {
+    let Input {
+        attrs,
+        vis,
+        ident,
+        file,
+        robot: mut raw,
+        budget,
+        keys,
+        spans,
+        shape_errors,
+    } = input;
+    let mut budget = budget;
+    let mut from_file = None;
+    let mut rebuild_on_change = TokenStream::new();
+    if let Some(lit) = &file {
+        let (path, src) = read(lit)?;
+        let parsed = RawFile::parse(&src, &lit.value()).map_err(|e| file_error(lit, e))?;
+        raw = merge(parsed.robot.clone(), raw, &keys);
+        if !keys.iter().any(|k| k == "budget") {
+            budget = parsed.budget;
+        }
+        let abs = path.to_string_lossy().into_owned();
+        // Makes cargo rebuild the crate when the file changes.
+        rebuild_on_change = quote! { const _: &str = ::core::include_str!(#abs); };
+        from_file = Some(parsed);
+    }
+    if raw.name.is_none() {
+        raw.name = Some(ident.to_string());
+    }
+
+    // An error belongs to the macro when its top-level key was written there (or when
+    // there is no file); else to the file, reported at the path literal with its line.
+    let in_macro = |e: &DhError| match e.path.0.first() {
+        Some(PathSeg::Key(k)) => keys.contains(k),
+        _ => from_file.is_none(),
+    };
+    let mut shape = shape_errors;
+    if let Some(f) = &from_file {
+        shape.extend(f.shape_errors.iter().cloned());
+    }
+    let checked = validate(&raw);
+    let checks = checked.as_ref().err().cloned().unwrap_or_default();
+    let errors = input::combine_errors(shape, checks);
+    let errors = errors.iter().map(|e| match (&from_file, &file) {
+        (Some(f), Some(lit)) if !in_macro(e) => {
+            syn::Error::new(lit.span(), f.locate(e.clone()).to_string())
+        }
+        _ => report::error(&spans, e),
+    });
+    if let Some(err) = report::combine(errors) {
+        return Err(err);
+    }
+    let robot = match checked {
+        Ok(robot) => robot,
+        // Unreachable: `validate` failing gives at least one error above.
+        Err(_) => return Err(syn::Error::new(ident.span(), "invalid robot")),
+    };
+
+    let header = ItemHeader {
+        attrs: quote! { #(#attrs)* },
+        vis: quote! { #vis },
+        ident,
+    };
+    let options = Options {
+        budget: budget.unwrap_or_else(Budget::default),
+    };
+    let generated = kinegen_core::generate(&robot, &header, &options);
+    let tokens = generated.tokens;
+    Ok(quote! { #tokens #rebuild_on_change })
+}
+
+/// The file of the file form, relative to the crate being compiled.
+fn read(lit: &LitStr) -> syn::Result<(PathBuf, String)> {
+    let rel = lit.value();
+    let Some(dir) = std::env::var_os("CARGO_MANIFEST_DIR") else {
+        return Err(syn::Error::new(
+            lit.span(),
+            "CARGO_MANIFEST_DIR is not set: the file form needs cargo to locate the file",
+        ));
+    };
+    let path = PathBuf::from(dir).join(&rel);
+    match std::fs::read_to_string(&path) {
+        Ok(src) => Ok((path, src)),
+        Err(e) => Err(syn::Error::new(
+            lit.span(),
+            format!("cannot read `{rel}` (relative to the crate's Cargo.toml): {e}"),
+        )),
+    }
+}
+
+fn file_error(lit: &LitStr, err: kinegen_core::toml_input::LoadError) -> syn::Error {
+    let errors = err
+        .errors
+        .iter()
+        .map(|e| syn::Error::new(lit.span(), e.to_string()));
+    report::combine(errors).unwrap_or_else(|| syn::Error::new(lit.span(), "invalid file"))
+}
+
+/// The file's robot with the top-level entries written in the macro put in its place.
+fn merge(mut base: RawRobot, over: RawRobot, keys: &[String]) -> RawRobot {
+    for key in keys {
+        match key.as_str() {
+            "name" => base.name = over.name.clone(),
+            "convention" => base.convention = over.convention.clone(),
+            "params" => base.params = over.params.clone(),
+            "joints" => base.joints = over.joints.clone(),
+            "task" => base.task = over.task.clone(),
+            "base" => base.base = over.base.clone(),
+            "tool" => base.tool = over.tool.clone(),
+            "scalar" => base.scalar = over.scalar.clone(),
+            _ => {}
+        }
+    }
+    base
+}

@@ -1,0 +1,452 @@
+//! Tokens → [`RawRobot`], remembering where every entry was written.
+//!
+//! ```text
+//! #[attrs] vis struct Name;                 // or: vis struct Name = "robots/x.toml";
+//! key: value, ...                           // name, convention, params, joints, task,
+//!                                           // base, tool, scalar, budget
+//! ```
+//! Values are token expressions (`pi/2`, `-a2`, `0.5*L1`), turned into text for
+//! `kinegen_core::value::parse_value`; only the *shape* (which keys, lists, rows) is
+//! checked here. The DH rules are `kinegen_core::dh::validate`'s.
+
+use kinegen_core::dh::{DhError, Path, RawJoint, RawRobot, RawValue};
+use kinegen_core::{input, Budget};
+use proc_macro2::{Delimiter, Group, TokenStream, TokenTree};
+use quote::ToTokens;
+use syn::ext::IdentExt;
+use syn::parse::{Parse, ParseStream, Parser};
+use syn::{Attribute, Ident, Lit, LitStr, Token, Visibility};
+
+use crate::report::Spans;
+
+/// The macro input, read but not validated.
+pub struct Input {
+    /// Outer attributes for the generated struct (doc comments, derives).
+    pub attrs: Vec<Attribute>,
+    /// Visibility of the generated struct.
+    pub vis: Visibility,
+    /// Name of the generated struct.
+    pub ident: Ident,
+    /// The file of the file form (`struct Ur5 = "robots/ur5.toml";`).
+    pub file: Option<LitStr>,
+    /// The entries written in the macro.
+    pub robot: RawRobot,
+    /// `budget: { .. }`, if written.
+    pub budget: Option<Budget>,
+    /// Top-level keys written in the macro (in the file form, they override the file's).
+    pub keys: Vec<String>,
+    /// Where each entry is.
+    pub spans: Spans,
+    /// Entries of the wrong shape, reported together with the validation errors.
+    pub shape_errors: Vec<DhError>,
+}
+
+impl Parse for Input {
+    fn parse(stream: ParseStream) -> syn::Result<Self> {
+        let attrs = stream.call(Attribute::parse_outer)?;
+        let vis: Visibility = stream.parse()?;
+        stream.parse::<Token![struct]>()?;
+        let ident: Ident = stream.parse()?;
+        let file = if stream.peek(Token![=]) {
+            stream.parse::<Token![=]>()?;
+            Some(stream.parse::<LitStr>()?)
+        } else {
+            None
+        };
+        stream.parse::<Token![;]>()?;
+
+        let mut r = Reader::default();
+        // Whole-robot errors (missing `convention`) point at the struct's name.
+        r.spans.insert(Path::root(), ident.to_token_stream());
+        let mut input = Input {
+            attrs,
+            vis,
+            ident,
+            file,
+            robot: RawRobot::default(),
+            budget: None,
+            keys: Vec::new(),
+            spans: Spans::default(),
+            shape_errors: Vec::new(),
+        };
+        for entry in entries(stream)? {
+            let key = entry.key.to_string();
+            if input.keys.contains(&key) {
+                r.syntax
+                    .push(syn::Error::new(entry.key.span(), input::given_twice(&key)));
+                continue;
+            }
+            input.keys.push(key.clone());
+            r.top(&entry, &mut input.robot, &mut input.budget);
+        }
+        if let Some(e) = crate::report::combine(r.syntax) {
+            return Err(e);
+        }
+        input.spans = r.spans;
+        input.shape_errors = r.errors;
+        Ok(input)
+    }
+}
+
+/// `key: value` as written; `value` is every token up to the next comma at this level.
+struct Entry {
+    key: Ident,
+    value: Vec<TokenTree>,
+}
+
+impl Entry {
+    /// Key through value, for underlining the whole entry.
+    fn tokens(&self) -> TokenStream {
+        let mut t = self.key.to_token_stream();
+        t.extend(self.value.iter().cloned());
+        t
+    }
+
+    fn value_tokens(&self) -> TokenStream {
+        self.value.iter().cloned().collect()
+    }
+}
+
+/// `key: value, key: value, ...` with an optional trailing comma.
+fn entries(stream: ParseStream) -> syn::Result<Vec<Entry>> {
+    let mut out = Vec::new();
+    while !stream.is_empty() {
+        // Keywords are fine as keys (`type`), and misspelt ones get our message.
+        let key = Ident::parse_any(stream)?;
+        stream.parse::<Token![:]>()?;
+        let mut value = Vec::new();
+        while !stream.is_empty() && !stream.peek(Token![,]) {
+            value.push(stream.parse::<TokenTree>()?);
+        }
+        if value.is_empty() {
+            return Err(syn::Error::new(key.span(), format!("`{key}` has no value")));
+        }
+        out.push(Entry { key, value });
+        if !stream.is_empty() {
+            stream.parse::<Token![,]>()?;
+        }
+    }
+    Ok(out)
+}
+
+/// The group if `value` is exactly one group with this delimiter.
+fn single_group(value: &[TokenTree], delimiter: Delimiter) -> Option<&Group> {
+    match value {
+        [TokenTree::Group(g)] if g.delimiter() == delimiter => Some(g),
+        _ => None,
+    }
+}
+
+/// Split a token stream at its top-level commas (nested groups keep theirs).
+fn split_commas(stream: TokenStream) -> Vec<Vec<TokenTree>> {
+    let mut out = vec![Vec::new()];
+    for tt in stream {
+        match &tt {
+            TokenTree::Punct(p) if p.as_char() == ',' => out.push(Vec::new()),
+            _ => {
+                if let Some(last) = out.last_mut() {
+                    last.push(tt);
+                }
+            }
+        }
+    }
+    if out.last().is_some_and(Vec::is_empty) {
+        out.pop();
+    }
+    out
+}
+
+/// An expression's text as a person would write it: `pi/2`, `-a2`, `d1 + 0.1`.
+/// (`TokenStream::to_string` would give `pi / 2`, and messages quote this text.)
+fn expr_text(tokens: &[TokenTree]) -> String {
+    let mut s = String::new();
+    // Whether the previous token ends an operand, making `+`/`-` binary.
+    let mut after_operand = false;
+    for tt in tokens {
+        match tt {
+            TokenTree::Punct(p) => {
+                let c = p.as_char();
+                if after_operand && (c == '+' || c == '-') {
+                    s.push(' ');
+                    s.push(c);
+                    s.push(' ');
+                } else {
+                    s.push(c);
+                }
+                after_operand = false;
+            }
+            TokenTree::Ident(_) | TokenTree::Literal(_) => {
+                if after_operand {
+                    s.push(' ');
+                }
+                s.push_str(&tt.to_string());
+                after_operand = true;
+            }
+            TokenTree::Group(g) => {
+                let inner: Vec<TokenTree> = g.stream().into_iter().collect();
+                let (open, close) = match g.delimiter() {
+                    Delimiter::Parenthesis => ("(", ")"),
+                    Delimiter::Bracket => ("[", "]"),
+                    Delimiter::Brace => ("{", "}"),
+                    Delimiter::None => ("", ""),
+                };
+                if after_operand {
+                    s.push(' ');
+                }
+                s.push_str(open);
+                s.push_str(&expr_text(&inner));
+                s.push_str(close);
+                after_operand = true;
+            }
+        }
+    }
+    s
+}
+
+#[derive(Default)]
+struct Reader {
+    spans: Spans,
+    /// Shape errors with a path (filtered against validation errors later).
+    errors: Vec<DhError>,
+    /// Errors that are about syntax, not a path (a duplicate top-level key).
+    syntax: Vec<syn::Error>,
+}
+
+impl Reader {
+    fn shape(&mut self, path: Path, tokens: TokenStream, message: impl Into<String>) {
+        self.spans.insert(path.clone(), tokens);
+        self.errors.push(DhError {
+            path,
+            message: message.into(),
+        });
+    }
+
+    fn top(&mut self, e: &Entry, robot: &mut RawRobot, budget: &mut Option<Budget>) {
+        let key = e.key.to_string();
+        let p = Path::root().key(&key);
+        self.spans.insert(p.clone(), e.tokens());
+        match key.as_str() {
+            "name" => match e.value.as_slice() {
+                [TokenTree::Literal(l)] => match Lit::new(l.clone()) {
+                    Lit::Str(s) => robot.name = Some(s.value()),
+                    _ => self.shape(
+                        p,
+                        e.tokens(),
+                        "`name` must be a string, e.g. `name: \"UR5\"`",
+                    ),
+                },
+                _ => self.shape(
+                    p,
+                    e.tokens(),
+                    "`name` must be a string, e.g. `name: \"UR5\"`",
+                ),
+            },
+            "convention" => robot.convention = Some(word(&e.value)),
+            "scalar" => robot.scalar = Some(word(&e.value)),
+            "params" => robot.params = self.table(e, &p).unwrap_or_default(),
+            "joints" => robot.joints = self.joints(e, &p),
+            "task" => match self.value(&e.value, &p) {
+                RawValue::List(items) => robot.task = Some(items),
+                _ => self.shape(
+                    p,
+                    e.tokens(),
+                    "`task` must be a list of rows such as `[x, y, rz]`",
+                ),
+            },
+            "base" => robot.base = self.table(e, &p),
+            "tool" => robot.tool = self.table(e, &p),
+            "budget" => *budget = self.budget(e, &p),
+            _ => self.shape(
+                p,
+                e.key.to_token_stream(),
+                input::unknown_top_level_key(&key),
+            ),
+        }
+    }
+
+    /// An entry's value: a `[..]` list (of values) or an expression.
+    fn value(&mut self, tokens: &[TokenTree], path: &Path) -> RawValue {
+        if let Some(g) = single_group(tokens, Delimiter::Bracket) {
+            let items = split_commas(g.stream())
+                .iter()
+                .enumerate()
+                .map(|(i, item)| {
+                    let ip = path.index(i);
+                    self.spans
+                        .insert(ip.clone(), item.iter().cloned().collect());
+                    self.value(item, &ip)
+                })
+                .collect();
+            return RawValue::List(items);
+        }
+        // A string literal holds the expression as in TOML files: `"pi/2"` = `pi/2`.
+        if let [TokenTree::Literal(l)] = tokens {
+            if let Lit::Str(s) = Lit::new(l.clone()) {
+                return RawValue::Text(s.value());
+            }
+        }
+        RawValue::Text(expr_text(tokens))
+    }
+
+    /// `{ key: value, ... }` (params, base, tool).
+    fn table(&mut self, e: &Entry, path: &Path) -> Option<Vec<(String, RawValue)>> {
+        let Some(g) = single_group(&e.value, Delimiter::Brace) else {
+            let example = match path.to_string().as_str() {
+                "params" => "`params: { L1: 1.0, L2: 0.5 }`",
+                _ => "`{ xyz: [x, y, z], rpy: [roll, pitch, yaw] }`",
+            };
+            self.shape(
+                path.clone(),
+                e.value_tokens(),
+                format!("`{path}` must be a braced table, e.g. {example}"),
+            );
+            return None;
+        };
+        match entries.parse2(g.stream()) {
+            Ok(inner) => Some(
+                inner
+                    .iter()
+                    .map(|ie| {
+                        let kp = path.key(&ie.key.to_string());
+                        self.spans.insert(kp.clone(), ie.tokens());
+                        (ie.key.to_string(), self.value(&ie.value, &kp))
+                    })
+                    .collect(),
+            ),
+            Err(err) => {
+                self.syntax.push(err);
+                None
+            }
+        }
+    }
+
+    /// `[ revolute { a: .., alpha: .., d: .. }, prismatic { .. }, ... ]`.
+    fn joints(&mut self, e: &Entry, path: &Path) -> Vec<RawJoint> {
+        let Some(g) = single_group(&e.value, Delimiter::Bracket) else {
+            self.shape(
+                path.clone(),
+                e.value_tokens(),
+                "`joints` must be a list of rows, e.g. `[revolute { a: 0, alpha: pi/2, d: d1 }, ...]`",
+            );
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (i, row) in split_commas(g.stream()).iter().enumerate() {
+            let rp = path.index(i);
+            let row_tokens: TokenStream = row.iter().cloned().collect();
+            self.spans.insert(rp.clone(), row_tokens.clone());
+            let (kind, body) = match row.as_slice() {
+                [TokenTree::Ident(kind), TokenTree::Group(b)]
+                    if b.delimiter() == Delimiter::Brace =>
+                {
+                    let tp = rp.key("type");
+                    self.spans.insert(tp, kind.to_token_stream());
+                    (Some(kind.to_string()), b)
+                }
+                // No type: the validator says "missing joint type" at the row.
+                [TokenTree::Group(b)] if b.delimiter() == Delimiter::Brace => (None, b),
+                _ => {
+                    self.shape(
+                        rp,
+                        row_tokens,
+                        "a joint row is written `revolute { a: .., alpha: .., d: .. }` or `prismatic { a: .., alpha: .., theta: .. }`",
+                    );
+                    continue;
+                }
+            };
+            let fields = match entries.parse2(body.stream()) {
+                Ok(fields) => fields,
+                Err(err) => {
+                    self.syntax.push(err);
+                    continue;
+                }
+            };
+            let mut joint = RawJoint {
+                kind,
+                fields: Vec::new(),
+            };
+            for f in &fields {
+                let key = f.key.to_string();
+                let fp = rp.key(&key);
+                self.spans.insert(fp.clone(), f.tokens());
+                let v = self.value(&f.value, &fp);
+                joint.fields.push((key, v));
+            }
+            out.push(joint);
+        }
+        out
+    }
+
+    /// `{ nodes: 5000, iterations: 20, time_ms: 500 }`.
+    fn budget(&mut self, e: &Entry, path: &Path) -> Option<Budget> {
+        let Some(g) = single_group(&e.value, Delimiter::Brace) else {
+            self.shape(
+                path.clone(),
+                e.value_tokens(),
+                "`budget` must be a braced table, e.g. `{ nodes: 5000, iterations: 20, time_ms: 500 }`",
+            );
+            return None;
+        };
+        let inner = match entries.parse2(g.stream()) {
+            Ok(inner) => inner,
+            Err(err) => {
+                self.syntax.push(err);
+                return None;
+            }
+        };
+        let mut budget = Budget::default();
+        for ie in &inner {
+            let key = ie.key.to_string();
+            let n = match ie.value.as_slice() {
+                [TokenTree::Literal(l)] => match Lit::new(l.clone()) {
+                    Lit::Int(i) => i.base10_parse::<i128>().ok(),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Err(message) = input::set_budget(&mut budget, &key, n) {
+                self.shape(path.key(&key), ie.tokens(), message);
+            }
+        }
+        Some(budget)
+    }
+}
+
+/// A one-word entry (`standard`, `f32`), also accepted as a string literal.
+fn word(tokens: &[TokenTree]) -> String {
+    if let [TokenTree::Literal(l)] = tokens {
+        if let Lit::Str(s) = Lit::new(l.clone()) {
+            return s.value();
+        }
+    }
+    expr_text(tokens)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn text(src: &str) -> String {
+        let tokens: Vec<TokenTree> = src.parse::<TokenStream>().unwrap().into_iter().collect();
+        expr_text(&tokens)
+    }
+
+    #[test]
+    fn expressions_print_as_written() {
+        assert_eq!(text("pi / 2"), "pi/2");
+        assert_eq!(text("-a2"), "-a2");
+        assert_eq!(text("0.5*L1"), "0.5*L1");
+        assert_eq!(text("d1+0.1"), "d1 + 0.1");
+        assert_eq!(text("pi/2 - t0"), "pi/2 - t0");
+        assert_eq!(text("2*-pi"), "2*-pi");
+        assert_eq!(text("-(pi/3)"), "-(pi/3)");
+        assert_eq!(text("pi pi"), "pi pi");
+        assert_eq!(text("1e-3"), "1e-3");
+    }
+
+    #[test]
+    fn commas_split_at_top_level_only() {
+        let s: TokenStream = "a, f(b, c), [d, e],".parse().unwrap();
+        assert_eq!(split_commas(s).len(), 3);
+    }
+}
