@@ -397,7 +397,7 @@ mod tests {
         let px = g.nf(chain.tool.p[0]).unwrap();
         assert_eq!(
             g.ring.display(px).to_string(),
-            "c1*L1 + c1*c2*L2 - s1*s2*L2"
+            "-s1*s2*L2 + c1*L1 + c1*c2*L2"
         );
         assert_eq!(g.as_num(chain.tool.p[2]), Some(&Rat::zero()));
     }

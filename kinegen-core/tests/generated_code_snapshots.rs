@@ -1,0 +1,39 @@
+//! The generated code of each reference robot, pinned: a change to the engine shows up
+//! here as a reviewable diff of the Rust users get.
+
+use kinegen_core::{generate, toml_input, ItemHeader};
+
+fn generated(file: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../robots")
+        .join(file);
+    let (robot, options) = toml_input::load_file(&path).unwrap();
+    let g = generate(&robot, &ItemHeader::public(&robot.name), &options);
+    g.pretty()
+}
+
+macro_rules! snapshot {
+    ($($test:ident => $file:literal),* $(,)?) => {$(
+        #[test]
+        fn $test() {
+            insta::assert_snapshot!(generated($file));
+        }
+    )*};
+}
+
+snapshot! {
+    planar_rr => "planar_rr.toml",
+    planar_rrr => "planar_rrr.toml",
+    scara => "scara.toml",
+    stanford => "stanford.toml",
+    ur5 => "ur5.toml",
+    puma560 => "puma560.toml",
+    panda => "panda.toml",
+}
+
+#[test]
+fn generation_is_deterministic() {
+    for file in ["ur5.toml", "panda.toml", "stanford.toml"] {
+        assert_eq!(generated(file), generated(file), "{file}");
+    }
+}

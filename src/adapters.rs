@@ -1,0 +1,61 @@
+//! Adapters from the plain arrays of [`Kinematics`] (row-major
+//! `[[f64; N]; 6]` Jacobians, `[[f64; 4]; 4]` transforms) to nalgebra's fixed-size types.
+
+use crate::{Kinematics, TaskKinematics};
+use nalgebra::{Isometry3, Matrix3, Rotation3, SMatrix, Translation3, UnitQuaternion, Vector3};
+
+/// A row-major `R × C` array as a nalgebra matrix.
+pub fn matrix_from_rows<const R: usize, const C: usize>(
+    rows: &[[f64; C]; R],
+) -> SMatrix<f64, R, C> {
+    SMatrix::from_fn(|r, c| rows[r][c])
+}
+
+/// The world-frame geometric Jacobian `J(q)` (rows `[vx vy vz ωx ωy ωz]`) as a matrix.
+pub fn jacobian_matrix<R: Kinematics<N>, const N: usize>(
+    robot: &R,
+    q: &[f64; N],
+) -> SMatrix<f64, 6, N> {
+    matrix_from_rows(&robot.jacobian(q))
+}
+
+/// The tool-frame geometric Jacobian as a matrix.
+pub fn jacobian_ee_matrix<R: Kinematics<N>, const N: usize>(
+    robot: &R,
+    q: &[f64; N],
+) -> SMatrix<f64, 6, N> {
+    matrix_from_rows(&robot.jacobian_ee(q))
+}
+
+/// The task Jacobian (rows [`TaskKinematics::TASK_ROWS`]) as a matrix.
+pub fn task_jacobian_matrix<R: TaskKinematics<N, M>, const N: usize, const M: usize>(
+    robot: &R,
+    q: &[f64; N],
+) -> SMatrix<f64, M, N> {
+    matrix_from_rows(&robot.task_jacobian(q))
+}
+
+/// The rotation block of a homogeneous transform.
+pub fn rotation_of(t: &[[f64; 4]; 4]) -> Matrix3<f64> {
+    Matrix3::from_fn(|r, c| t[r][c])
+}
+
+/// The translation column of a homogeneous transform.
+pub fn translation_of(t: &[[f64; 4]; 4]) -> Vector3<f64> {
+    Vector3::new(t[0][3], t[1][3], t[2][3])
+}
+
+/// A homogeneous transform as an [`Isometry3`]. The rotation block is assumed orthonormal
+/// (as FK produces it); it is converted to a unit quaternion, which renormalises it.
+pub fn pose_isometry(t: &[[f64; 4]; 4]) -> Isometry3<f64> {
+    let r = Rotation3::from_matrix_unchecked(rotation_of(t));
+    Isometry3::from_parts(
+        Translation3::from(translation_of(t)),
+        UnitQuaternion::from_rotation_matrix(&r),
+    )
+}
+
+/// The tool pose `fk(q)` as an [`Isometry3`].
+pub fn fk_isometry<R: Kinematics<N>, const N: usize>(robot: &R, q: &[f64; N]) -> Isometry3<f64> {
+    pose_isometry(&robot.fk(q))
+}

@@ -1,0 +1,416 @@
+//! Inverse velocity kinematics, pseudo-inverses, DLS, static forces, manipulability and
+//! the analytical Jacobian on hand-written robots (see `common`).
+
+mod common;
+
+use common::*;
+use kinegen::adapters::{jacobian_matrix, rotation_of, task_jacobian_matrix};
+use kinegen::analytic::{
+    analytical_jacobian, analytical_jacobian_at, euler_angles, euler_rate_matrix, EulerConvention,
+};
+use kinegen::forces::{joint_torques, joint_torques_at};
+use kinegen::linalg::{Lu, Svd};
+use kinegen::manipulability::{
+    condition_number, manipulability, measures, smallest_singular_value,
+};
+use kinegen::velocity::*;
+use kinegen::{Kinematics, SolveError};
+use nalgebra::{DMatrix, Matrix3, SMatrix, SVector, Vector3};
+use proptest::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+fn angle() -> impl Strategy<Value = f64> {
+    -PI..PI
+}
+fn q6() -> impl Strategy<Value = [f64; 6]> {
+    [angle(), angle(), angle(), angle(), angle(), angle()]
+}
+fn q7() -> impl Strategy<Value = [f64; 7]> {
+    [
+        angle(),
+        angle(),
+        angle(),
+        angle(),
+        angle(),
+        angle(),
+        angle(),
+    ]
+}
+fn v6() -> impl Strategy<Value = SVector<f64, 6>> {
+    [
+        -1.0..1.0f64,
+        -1.0..1.0,
+        -1.0..1.0,
+        -1.0..1.0,
+        -1.0..1.0,
+        -1.0..1.0,
+    ]
+    .prop_map(SVector::from)
+}
+
+/// Independent reference: nalgebra's own (allocating, bidiagonal) SVD.
+fn reference_singular_values<const M: usize, const N: usize>(j: &SMatrix<f64, M, N>) -> Vec<f64> {
+    let d = DMatrix::from_fn(M, N, |r, c| j[(r, c)]);
+    let mut s: Vec<f64> = d
+        .svd(false, false)
+        .singular_values
+        .iter()
+        .copied()
+        .collect();
+    s.sort_by(|a, b| b.partial_cmp(a).unwrap());
+    s
+}
+
+fn penrose<const M: usize, const N: usize>(
+    j: &SMatrix<f64, M, N>,
+    p: &SMatrix<f64, N, M>,
+    tol: f64,
+) {
+    let jp = j * p;
+    let pj = p * j;
+    assert!((jp * j - j).norm() <= tol * (1.0 + j.norm()), "J J+ J != J");
+    assert!(
+        (pj * p - p).norm() <= tol * (1.0 + p.norm()),
+        "J+ J J+ != J+"
+    );
+    assert!(
+        (jp - jp.transpose()).norm() <= tol * (1.0 + jp.norm()),
+        "J J+ not symmetric"
+    );
+    assert!(
+        (pj - pj.transpose()).norm() <= tol * (1.0 + pj.norm()),
+        "J+ J not symmetric"
+    );
+}
+
+#[test]
+fn test_robots_match_finite_differences() {
+    let q = [0.3, -1.1, 0.7, 0.4, -0.9, 1.3];
+    let r = ur5();
+    let fd = fd_position_jacobian(&r, &q);
+    let j = r.jacobian(&q);
+    for row in 0..3 {
+        for c in 0..6 {
+            assert!((fd[row][c] - j[row][c]).abs() < 1e-8);
+        }
+    }
+    // The UR5 determinant factors as a2 a3 s3 s5 (a2 c2 + a3 c23 + d5 s234), up to sign.
+    let det = r.jacobian_det(&q).unwrap();
+    let closed = UR5_A2 * UR5_A3 * q[2].sin() * q[4].sin() * ur5_shoulder_factor(&q);
+    assert!(
+        (det.abs() - closed.abs()).abs() < 1e-12,
+        "{det} vs {closed}"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn inverse_velocity_reproduces_twist(q in q6(), xdot in v6()) {
+        let j = jacobian_matrix(&ur5(), &q);
+        let sv = reference_singular_values(&j);
+        prop_assume!(sv[5] > 1e-3);
+        let qd = inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE).unwrap();
+        prop_assert!((j * qd - xdot).norm() <= 1e-9 * (1.0 + xdot.norm()) * sv[0] / sv[5]);
+        // LU determinant agrees with nalgebra's.
+        let det = Lu::new(&j, DEFAULT_TOLERANCE).unwrap().determinant();
+        prop_assert!((det - j.determinant()).abs() <= 1e-12 * (1.0 + det.abs()));
+    }
+
+    #[test]
+    fn singular_values_match_reference(q in q7()) {
+        let j = jacobian_matrix(&redundant7(), &q);
+        let svd = Svd::new(&j).unwrap();
+        let reference = reference_singular_values(&j);
+        for k in 0..6 {
+            prop_assert!((svd.singular_values[k] - reference[k]).abs() < 1e-12 * (1.0 + reference[0]));
+        }
+        prop_assert!(svd.singular_values[6].abs() < 1e-12);
+        // U Σ Vᵀ = J
+        let rebuilt = svd.u * SMatrix::<f64, 7, 7>::from_diagonal(&svd.singular_values) * svd.v.transpose();
+        prop_assert!((rebuilt - j).norm() < 1e-12);
+    }
+
+    #[test]
+    fn pseudo_inverses_satisfy_penrose_identities(q in q7()) {
+        // Redundant 6×7: right pseudo-inverse and SVD agree.
+        let j = jacobian_matrix(&redundant7(), &q);
+        let sv = reference_singular_values(&j);
+        prop_assume!(sv[5] > 1e-3);
+        let p_svd = pinv_svd(&j, 1e-12).unwrap();
+        let p_right = pinv_right(&j, 1e-14).unwrap();
+        penrose(&j, &p_svd, 1e-9);
+        penrose(&j, &p_right, 1e-7);
+        prop_assert!((p_svd - p_right).norm() < 1e-6 * (sv[0] / sv[5]).powi(2));
+        prop_assert!(pinv_left(&j, DEFAULT_TOLERANCE).is_err(), "JᵀJ of a 6×7 is singular");
+        // Tall 6×3: planar RRR full Jacobian, left pseudo-inverse.
+        let q3 = [q[0], q[1], q[2]];
+        let j3 = jacobian_matrix(&planar_rrr(), &q3);
+        if q[1].sin().abs() > 1e-2 {
+            let p_left = pinv_left(&j3, 1e-14).unwrap();
+            penrose(&j3, &p_left, 1e-8);
+            prop_assert!((p_left - pinv_svd(&j3, 1e-12).unwrap()).norm() < 1e-8 * (1.0 + p_left.norm()));
+        }
+    }
+
+    #[test]
+    fn dls_is_bounded_at_exact_ur5_singularities(q in q6(), xdot in v6(), which in 0usize..3) {
+        let mut q = q;
+        match which {
+            0 => q[2] = 0.0,          // elbow: q3 = 0
+            1 => q[4] = 0.0,          // wrist: q5 = 0
+            _ => q = match ur5_shoulder_singular(q) { Some(q) => q, None => return Ok(()) },
+        }
+        let j = jacobian_matrix(&ur5(), &q);
+        let sv = reference_singular_values(&j);
+        prop_assert!(sv[5] < 1e-9 * sv[0], "configuration is not singular: {sv:?}");
+        let singular = matches!(inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE), Err(SolveError::Singular { .. }));
+        prop_assert!(singular, "plain inverse must refuse");
+        prop_assert!(pinv_right(&j, 1e-12).is_err());
+        let damping = Damping::default();
+        let qd = dls_velocity(&j, &xdot, &damping).unwrap();
+        prop_assert!(qd.iter().all(|x| x.is_finite()));
+        let lambda = damping.lambda_squared(Svd::new(&j).unwrap().sigma_min()).sqrt();
+        let gain = (1.0 / damping.epsilon).max(1.0 / (2.0 * lambda));
+        prop_assert!(qd.norm() <= gain * xdot.norm() * (1.0 + 1e-9), "{} > {}", qd.norm(), gain * xdot.norm());
+        // The SVD pseudo-inverse handles the rank deficiency too.
+        let p = pinv_svd(&j, 1e-9).unwrap();
+        penrose(&j, &p, 1e-8);
+    }
+
+    #[test]
+    fn near_singular_never_gives_nan(q in q6(), xdot in v6(), eps_exp in -16.0..-2.0f64) {
+        let mut q = q;
+        q[2] = 10f64.powf(eps_exp);
+        let j = jacobian_matrix(&ur5(), &q);
+        match inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE) {
+            Ok(qd) => prop_assert!(qd.iter().all(|x| x.is_finite())),
+            Err(e) => {
+                let expected = matches!(e, SolveError::Singular { .. } | SolveError::Overflow);
+                prop_assert!(expected, "unexpected error {:?}", e);
+            }
+        }
+        prop_assert!(dls_velocity(&j, &xdot, &Damping::default()).unwrap().iter().all(|x| x.is_finite()));
+    }
+
+    #[test]
+    fn dls_equals_pseudo_inverse_away_from_singularities(q in q6(), xdot in v6()) {
+        let j = jacobian_matrix(&ur5(), &q);
+        let damping = Damping::default();
+        prop_assume!(Svd::new(&j).unwrap().sigma_min() > damping.epsilon);
+        let a = dls_velocity(&j, &xdot, &damping).unwrap();
+        let b = inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE).unwrap();
+        prop_assert!((a - b).norm() < 1e-9 * (1.0 + b.norm()));
+    }
+
+    #[test]
+    fn jacobian_transpose_is_a_descent_direction(q in q7(), xdot in v6(), alpha in 1e-3..1.0f64) {
+        let j = jacobian_matrix(&redundant7(), &q);
+        let qd = transpose_velocity(&j, &xdot, alpha).unwrap();
+        prop_assert!((j * qd).dot(&xdot) >= 0.0);
+        prop_assert!(((j * qd).dot(&xdot) - alpha * (j.transpose() * xdot).norm_squared()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn static_forces_satisfy_virtual_work(q in q7(), wrench in v6(), qd in [-1.0..1.0f64, -1.0..1.0, -1.0..1.0, -1.0..1.0, -1.0..1.0, -1.0..1.0, -1.0..1.0]) {
+        // τ · q̇ = F · ẋ with ẋ = J q̇, for the 6×7 arm and the 6-joint UR5.
+        let r = redundant7();
+        let qd = SVector::<f64, 7>::from(qd);
+        let tau = joint_torques_at(&r, &q, &wrench);
+        let xdot = jacobian_matrix(&r, &q) * qd;
+        prop_assert!((tau.dot(&qd) - wrench.dot(&xdot)).abs() < 1e-12 * (1.0 + tau.norm() * qd.norm()));
+        let q6 = [q[0], q[1], q[2], q[3], q[4], q[5]];
+        let qd6 = qd.fixed_rows::<6>(0).into_owned();
+        let tau6 = joint_torques_at(&ur5(), &q6, &wrench);
+        prop_assert!((tau6.dot(&qd6) - wrench.dot(&(jacobian_matrix(&ur5(), &q6) * qd6))).abs() < 1e-12);
+        // Task Jacobian (planar RRR, [Fx, Fy, nz]).
+        let q3 = [q[0], q[1], q[2]];
+        let jt = task_jacobian_matrix(&planar_rrr(), &q3);
+        let f3 = wrench.fixed_rows::<3>(0).into_owned();
+        let qd3 = qd.fixed_rows::<3>(0).into_owned();
+        prop_assert!((joint_torques(&jt, &f3).dot(&qd3) - f3.dot(&(jt * qd3))).abs() < 1e-10);
+    }
+
+    #[test]
+    fn manipulability_matches_determinants(q in q7()) {
+        let j = jacobian_matrix(&redundant7(), &q);
+        let w = manipulability(&j).unwrap();
+        let det = (j * j.transpose()).determinant();
+        prop_assert!((w - det.max(0.0).sqrt()).abs() < 1e-9 * (1.0 + w), "{w} vs sqrt({det})");
+        let reference = reference_singular_values(&j);
+        let m = measures(&j).unwrap();
+        prop_assert!((m.sigma_min - reference[5]).abs() < 1e-12);
+        prop_assert!((smallest_singular_value(&j).unwrap() - reference[5]).abs() < 1e-12);
+        if reference[5] > 1e-6 {
+            prop_assert!((condition_number(&j).unwrap() - reference[0] / reference[5]).abs() < 1e-6 * reference[0] / reference[5]);
+        }
+        // Square: √det(JJᵀ) = |det J|; planar RR: L1 L2 |sin q2|.
+        let q6 = [q[0], q[1], q[2], q[3], q[4], q[5]];
+        let j6 = jacobian_matrix(&ur5(), &q6);
+        prop_assert!((manipulability(&j6).unwrap() - j6.determinant().abs()).abs() < 1e-12);
+        let jrr = task_jacobian_matrix(&planar_rr(), &[q[0], q[1]]);
+        prop_assert!((manipulability(&jrr).unwrap() - 0.8 * q[1].sin().abs()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn analytical_jacobian_matches_euler_angle_rates(q in q6(), conv in prop_oneof![Just(EulerConvention::Zyx), Just(EulerConvention::Zyz)]) {
+        let r = ur5();
+        let phi = euler_angles(&rotation_of(&r.fk(&q)), conv);
+        let det = match conv { EulerConvention::Zyx => phi[1].cos(), EulerConvention::Zyz => phi[1].sin() };
+        prop_assume!(det.abs() > 0.05);
+        // The Euler angles reproduce the rotation.
+        prop_assert!((euler_to_matrix(&phi, conv) - rotation_of(&r.fk(&q))).norm() < 1e-12);
+        let ja = analytical_jacobian_at(&r, &q, conv, 1e-6).unwrap();
+        // Column c of J_A's lower block = ∂φ/∂q_c (central differences, unwrapped).
+        let h = 1e-6;
+        for c in 0..6 {
+            let (mut qp, mut qm) = (q, q);
+            qp[c] += h;
+            qm[c] -= h;
+            let fp = euler_angles(&rotation_of(&r.fk(&qp)), conv);
+            let fm = euler_angles(&rotation_of(&r.fk(&qm)), conv);
+            for k in 0..3 {
+                let mut d = fp[k] - fm[k];
+                if d > PI { d -= 2.0 * PI; }
+                if d < -PI { d += 2.0 * PI; }
+                prop_assert!((d / (2.0 * h) - ja[(3 + k, c)]).abs() < 1e-5 * (1.0 + ja[(3 + k, c)].abs()),
+                    "col {c} row {k}: fd {} vs {}", d / (2.0 * h), ja[(3 + k, c)]);
+            }
+            for k in 0..3 {
+                prop_assert_eq!(ja[(k, c)], r.jacobian(&q)[k][c]);
+            }
+        }
+        // T(φ) T(φ)⁻¹ = I through the public pieces.
+        let t = euler_rate_matrix(&phi, conv);
+        let geo = SMatrix::<f64, 6, 3>::from_fn(|r, c| if r >= 3 { t[(r - 3, c)] } else { 0.0 });
+        let back = analytical_jacobian(&geo, &phi, conv, 1e-9).unwrap();
+        prop_assert!((back.fixed_rows::<3>(3) - Matrix3::identity()).norm() < 1e-9 / det.abs());
+    }
+}
+
+fn euler_to_matrix(phi: &Vector3<f64>, conv: EulerConvention) -> Matrix3<f64> {
+    use nalgebra::Rotation3;
+    let rz = |a| Rotation3::from_axis_angle(&Vector3::z_axis(), a);
+    let ry = |a| Rotation3::from_axis_angle(&Vector3::y_axis(), a);
+    let rx = |a| Rotation3::from_axis_angle(&Vector3::x_axis(), a);
+    match conv {
+        EulerConvention::Zyx => (rz(phi[0]) * ry(phi[1]) * rx(phi[2])).into_inner(),
+        EulerConvention::Zyz => (rz(phi[0]) * ry(phi[1]) * rz(phi[2])).into_inner(),
+    }
+}
+
+#[test]
+fn planar_rr_stretched_out_is_singular_and_dls_bounded() {
+    let r = planar_rr();
+    for q1 in [-2.0, 0.0, 0.4, 3.0] {
+        for q2 in [0.0, PI] {
+            let j = task_jacobian_matrix(&r, &[q1, q2]);
+            let xdot = SVector::<f64, 2>::new(0.3, -0.7);
+            assert!(
+                matches!(
+                    inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE),
+                    Err(SolveError::Singular { .. })
+                ),
+                "q2 = {q2}"
+            );
+            let qd = dls_velocity(&j, &xdot, &Damping::default()).unwrap();
+            assert!(
+                qd.iter().all(|x| x.is_finite())
+                    && qd.norm() <= xdot.norm() / (2.0 * 0.05) * (1.0 + 1e-9)
+            );
+            assert!(manipulability(&j).unwrap() < 1e-15);
+            assert!(condition_number(&j).unwrap() > 1e14);
+        }
+    }
+    // Planar RRR task Jacobian [x, y, θ] at q2 = 0: det = a1 a2 sin q2 = 0.
+    let j = task_jacobian_matrix(&planar_rrr(), &[0.3, 0.0, -0.4]);
+    assert!(inverse_velocity(
+        &j,
+        &SVector::<f64, 3>::new(1.0, 0.0, 0.0),
+        DEFAULT_TOLERANCE
+    )
+    .is_err());
+    let j = task_jacobian_matrix(&planar_rrr(), &[0.3, 0.9, -0.4]);
+    assert!((j.determinant() - 12.25 * 0.9f64.sin()).abs() < 1e-12);
+}
+
+#[test]
+fn non_finite_input_is_an_error_not_nan() {
+    let mut j = jacobian_matrix(&ur5(), &[0.1, -1.0, 1.2, 0.3, 0.7, 0.0]);
+    let ok = SVector::<f64, 6>::repeat(0.1);
+    let mut bad = ok;
+    bad[2] = f64::NAN;
+    assert_eq!(
+        inverse_velocity(&j, &bad, DEFAULT_TOLERANCE),
+        Err(SolveError::NonFinite)
+    );
+    assert_eq!(
+        dls_velocity(&j, &bad, &Damping::default()),
+        Err(SolveError::NonFinite)
+    );
+    assert_eq!(pinv_velocity(&j, &bad, 1e-12), Err(SolveError::NonFinite));
+    assert_eq!(
+        transpose_velocity(&j, &bad, 0.1),
+        Err(SolveError::NonFinite)
+    );
+    j[(1, 1)] = f64::INFINITY;
+    assert_eq!(
+        inverse_velocity(&j, &ok, DEFAULT_TOLERANCE),
+        Err(SolveError::NonFinite)
+    );
+    assert_eq!(
+        dls_velocity(&j, &ok, &Damping::default()),
+        Err(SolveError::NonFinite)
+    );
+    assert_eq!(pinv_svd(&j, 1e-12).unwrap_err(), SolveError::NonFinite);
+    assert_eq!(manipulability(&j), Err(SolveError::NonFinite));
+    // Zero matrix: singular, not a division by zero.
+    let z = SMatrix::<f64, 6, 6>::zeros();
+    assert!(matches!(
+        inverse_velocity(&z, &ok, DEFAULT_TOLERANCE),
+        Err(SolveError::Singular { .. })
+    ));
+    assert_eq!(
+        dls_velocity(&z, &ok, &Damping::default()).unwrap(),
+        SVector::<f64, 6>::zeros()
+    );
+    assert_eq!(condition_number(&z).unwrap(), f64::INFINITY);
+    // The error messages read as sentences.
+    let msg = inverse_velocity(&z, &ok, DEFAULT_TOLERANCE)
+        .unwrap_err()
+        .to_string();
+    assert!(msg.starts_with("singular Jacobian"), "{msg}");
+}
+
+#[test]
+fn euler_representation_singularity_is_an_error() {
+    let j = jacobian_matrix(&ur5(), &[0.1, -1.0, 1.2, 0.3, 0.7, 0.0]);
+    let e = analytical_jacobian(
+        &j,
+        &Vector3::new(0.2, FRAC_PI_2, 0.1),
+        EulerConvention::Zyx,
+        1e-9,
+    )
+    .unwrap_err();
+    assert_eq!(e.convention, EulerConvention::Zyx);
+    assert!(e.det < 1e-9);
+    assert!(
+        analytical_jacobian(&j, &Vector3::new(0.2, 0.0, 0.1), EulerConvention::Zyz, 1e-9).is_err()
+    );
+    assert!(
+        analytical_jacobian(&j, &Vector3::new(0.2, PI, 0.1), EulerConvention::Zyz, 1e-9).is_err()
+    );
+    assert!(
+        analytical_jacobian(&j, &Vector3::new(0.2, 0.0, 0.1), EulerConvention::Zyx, 1e-9).is_ok()
+    );
+    assert!(e.to_string().contains("ZYX"));
+    // det T(φ) = −cos φ₂ (ZYX) and −sin φ₂ (ZYZ).
+    let phi = Vector3::new(0.4, 0.3, -1.2);
+    assert!(
+        (euler_rate_matrix(&phi, EulerConvention::Zyx).determinant() + 0.3f64.cos()).abs() < 1e-15
+    );
+    assert!(
+        (euler_rate_matrix(&phi, EulerConvention::Zyz).determinant() + 0.3f64.sin()).abs() < 1e-15
+    );
+}

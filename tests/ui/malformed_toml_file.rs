@@ -1,0 +1,5 @@
+kinegen::kinematics! {
+    pub struct Bad = "tests/ui/data/malformed.toml";
+}
+
+fn main() {}

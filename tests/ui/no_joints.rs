@@ -1,0 +1,7 @@
+kinegen::kinematics! {
+    pub struct Bad;
+    convention: standard,
+    joints: [],
+}
+
+fn main() {}

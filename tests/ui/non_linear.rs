@@ -1,0 +1,10 @@
+kinegen::kinematics! {
+    pub struct Bad;
+    convention: standard,
+    params: { L1: 1.0, L2: 0.5 },
+    joints: [
+        revolute { a: L1*L2, alpha: 0, d: 0 },
+    ],
+}
+
+fn main() {}

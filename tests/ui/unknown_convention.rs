@@ -1,0 +1,9 @@
+kinegen::kinematics! {
+    pub struct Bad;
+    convention: denavit,
+    joints: [
+        revolute { a: 0, alpha: 0, d: 0 },
+    ],
+}
+
+fn main() {}

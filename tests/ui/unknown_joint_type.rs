@@ -1,0 +1,10 @@
+kinegen::kinematics! {
+    pub struct Bad;
+    convention: standard,
+    joints: [
+        revolute { a: 0, alpha: 0, d: 0 },
+        spherical { a: 0, alpha: 0, d: 0 },
+    ],
+}
+
+fn main() {}
