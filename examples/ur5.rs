@@ -3,7 +3,6 @@
 //!
 //! `cargo run --example ur5`
 
-use kinegen::Kinematics;
 use kinegen_core::code::Coder;
 use kinegen_core::model::Model;
 use kinegen_robots::Ur5;
