@@ -195,7 +195,7 @@ impl Model {
                             }
                         }
                         for f in &t.trig {
-                            let nf = trig_nf(&self.chain.angles, &g.ring, f);
+                            let nf = trig::sum_nf(&g.ring, &self.chain.angles, f);
                             let y = g.from_poly(&nf);
                             x = g.mul(x, y);
                         }
@@ -251,27 +251,6 @@ impl Model {
             text,
             latex,
         })
-    }
-}
-
-fn trig_nf(
-    angles: &[crate::chain::AngleDef],
-    ring: &crate::poly::Ring,
-    t: &crate::trig::SumTrig,
-) -> crate::poly::Poly {
-    use crate::poly::Poly;
-    let (mut s, mut c) = (Poly::zero(), Poly::one());
-    for &a in &t.angles {
-        let (sa, ca) = (Poly::var(angles[a].vars.0), Poly::var(angles[a].vars.1));
-        let ns = ring.mul(&s, &ca).add(&ring.mul(&c, &sa));
-        let nc = ring.mul(&c, &ca).sub(&ring.mul(&s, &sa));
-        s = ns;
-        c = nc;
-    }
-    if t.sin {
-        s
-    } else {
-        c
     }
 }
 

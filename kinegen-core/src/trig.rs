@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 
 use num_traits::{One, Signed};
 
-use crate::chain::{AngleSource, Chain};
+use crate::chain::{AngleDef, AngleSource, Chain};
 use crate::poly::{Mono, Poly, Ring, Var};
 use crate::value::{fmt_rat, Rat};
 
@@ -40,40 +40,29 @@ struct Angles {
     of_var: BTreeMap<Var, (usize, bool)>,
     /// Joint number (1-based) of each angle, if it is a joint angle without offset.
     joint_of: Vec<Option<usize>>,
-    sin_var: Vec<Var>,
-    cos_var: Vec<Var>,
 }
 
 impl Angles {
     fn new(chain: &Chain) -> Self {
         let mut of_var = BTreeMap::new();
         let mut joint_of = Vec::new();
-        let mut sin_var = Vec::new();
-        let mut cos_var = Vec::new();
         for (k, a) in chain.angles.iter().enumerate() {
             of_var.insert(a.vars.0, (k, true));
             of_var.insert(a.vars.1, (k, false));
-            sin_var.push(a.vars.0);
-            cos_var.push(a.vars.1);
             joint_of.push(match &a.source {
                 AngleSource::Joint { joint, .. } => Some(joint + 1),
                 AngleSource::Constant(_) => None,
             });
         }
-        Angles {
-            of_var,
-            joint_of,
-            sin_var,
-            cos_var,
-        }
+        Angles { of_var, joint_of }
     }
 }
 
-/// The normal form of `sin`/`cos` of a sum of angles.
-fn sum_nf(ring: &Ring, ang: &Angles, t: &SumTrig) -> Poly {
+/// The normal form of `sin`/`cos` of a sum of the chain's angles.
+pub fn sum_nf(ring: &Ring, angles: &[AngleDef], t: &SumTrig) -> Poly {
     let (mut s, mut c) = (Poly::zero(), Poly::one());
     for &a in &t.angles {
-        let (sa, ca) = (Poly::var(ang.sin_var[a]), Poly::var(ang.cos_var[a]));
+        let (sa, ca) = (Poly::var(angles[a].vars.0), Poly::var(angles[a].vars.1));
         let ns = ring.mul(&s, &ca).add(&ring.mul(&c, &sa));
         let nc = ring.mul(&c, &ca).sub(&ring.mul(&s, &sa));
         s = ns;
@@ -117,7 +106,7 @@ pub fn rewrite(chain: &Chain, p: &Poly) -> Option<Vec<TrigTerm>> {
         for grouping in groupings(&singles, &ang) {
             let mut nf = Poly::constant(Rat::one());
             for t in &grouping {
-                nf = ring.mul(&nf, &sum_nf(ring, &ang, t));
+                nf = ring.mul(&nf, &sum_nf(ring, &chain.angles, t));
             }
             // Coefficient so that the chosen monomial matches.
             let k = nf
@@ -159,7 +148,7 @@ pub fn rewrite(chain: &Chain, p: &Poly) -> Option<Vec<TrigTerm>> {
     for t in &out {
         let mut nf = Poly::from_terms([(t.rest.clone(), t.coef.clone())]);
         for f in &t.trig {
-            nf = ring.mul(&nf, &sum_nf(ring, &ang, f));
+            nf = ring.mul(&nf, &sum_nf(ring, &chain.angles, f));
         }
         sum = sum.add(&nf);
     }
