@@ -70,6 +70,16 @@ impl Transform {
     }
 }
 
+/// `R · v` for the rotation of `w` (zeros and ones fold away).
+pub fn rotate(g: &mut Graph, w: &Transform, v: [Id; 3]) -> [Id; 3] {
+    let mut out = [0; 3];
+    for (i, o) in out.iter_mut().enumerate() {
+        let terms: Vec<Id> = (0..3).map(|m| g.mul(w.cols[m][i], v[m])).collect();
+        *o = g.sum(&terms);
+    }
+    out
+}
+
 /// An elementary transform.
 #[derive(Clone, Copy, Debug)]
 enum Elem {
@@ -99,9 +109,37 @@ pub struct Chain {
     pub axes: Vec<([Id; 3], [Id; 3])>,
 }
 
+/// The chain from a middle frame `k`: `T_k⁻¹ · T_i` for the frames after it.
+///
+/// Expressing the tail of the chain in frame `k` removes joints 1..k from every
+/// product (for a UR arm in frame 1, the elbow plane is 2-D); the world values are
+/// recovered with one rotation by `R_k` at the end. Which `k` is cheapest depends
+/// on the arm, so the model tries several and counts operations.
+#[derive(Clone, Debug)]
+pub struct Pivot {
+    /// `k`: joints `k+1..=N` (0-based `k..N`) have local axes.
+    pub k: usize,
+    /// `base · A1 ⋯ Ak` in world coordinates.
+    pub frame: Transform,
+    /// Axes and points of joints `k..N` (0-based) in frame `k`.
+    pub axes: Vec<([Id; 3], [Id; 3])>,
+    /// The tool in frame `k`.
+    pub tool: Transform,
+}
+
 impl Chain {
-    /// Build the symbolic chain of a checked robot.
+    /// Build the symbolic chain of a checked robot, left to right from the base.
     pub fn new(robot: &Robot, max_terms: usize) -> Chain {
+        Chain::with_pivot(robot, max_terms, None).0
+    }
+
+    /// Build the chain; with `pivot = Some(k)` (`1 ≤ k < N`) the frames after `k` are
+    /// built in frame `k` and composed with `T_k` (see [`Pivot`]).
+    pub fn with_pivot(
+        robot: &Robot,
+        max_terms: usize,
+        pivot: Option<usize>,
+    ) -> (Chain, Option<Pivot>) {
         let mut b = Builder {
             graph: Graph::new(Default::default(), max_terms),
             angles: Vec::new(),
@@ -116,9 +154,18 @@ impl Chain {
             }
         }
         let base = t;
+        let n = robot.dof();
+        let pivot_at = pivot.filter(|&k| k >= 1 && k < n);
         let mut frames = Vec::new();
         let mut axes = Vec::new();
+        // In pivot mode, `t` is local to frame k after the pivot and `world` maps it out.
+        let mut world: Option<Transform> = None;
+        let mut local_axes = Vec::new();
         for (i, j) in robot.joints.iter().enumerate() {
+            if pivot_at == Some(i) {
+                world = Some(t);
+                t = Transform::identity(&mut b.graph);
+            }
             let (sq, cq) = match j.kind {
                 JointKind::Revolute => b.joint_angle(i, &j.theta),
                 JointKind::Prismatic => b.const_angle(&j.theta),
@@ -147,39 +194,67 @@ impl Chain {
                 s: sa,
                 c: ca,
             };
-            match robot.convention {
+            let axis = match robot.convention {
                 Convention::Standard => {
                     // The joint moves about z of the previous frame.
-                    axes.push((t.z(), t.p));
+                    let axis = (t.z(), t.p);
                     for e in [rz, tz, tx, rx] {
                         t = b.apply(&t, e);
                     }
+                    axis
                 }
                 Convention::Modified => {
                     for e in [rx, tx, rz, tz] {
                         t = b.apply(&t, e);
                     }
                     // The joint moves about z of its own frame.
-                    axes.push((t.z(), t.p));
+                    (t.z(), t.p)
+                }
+            };
+            match &world {
+                Some(w) => {
+                    local_axes.push(axis);
+                    let z = b.rotate(w, axis.0);
+                    let o = b.point(w, axis.1);
+                    axes.push((z, o));
+                    frames.push(b.compose(w, &t));
+                }
+                None => {
+                    axes.push(axis);
+                    frames.push(t);
                 }
             }
-            frames.push(t);
         }
         if let Some(f) = &robot.tool {
             for e in b.frame_elems(f) {
                 t = b.apply(&t, e);
             }
         }
-        Chain {
-            graph: b.graph,
-            angles: b.angles,
-            joint_vars: b.joint_vars,
-            param_vars: b.param_vars,
-            frames,
-            base,
-            tool: t,
-            axes,
-        }
+        let (tool, pivot) = match (world, pivot_at) {
+            (Some(w), Some(k)) => (
+                b.compose(&w, &t),
+                Some(Pivot {
+                    k,
+                    frame: w,
+                    axes: local_axes,
+                    tool: t,
+                }),
+            ),
+            _ => (t, None),
+        };
+        (
+            Chain {
+                graph: b.graph,
+                angles: b.angles,
+                joint_vars: b.joint_vars,
+                param_vars: b.param_vars,
+                frames,
+                base,
+                tool,
+                axes,
+            },
+            pivot,
+        )
     }
 }
 
@@ -285,7 +360,8 @@ impl Builder {
         }
         let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
         // (rational part, √k part) of sin and cos for t in [0, 1/2].
-        let table: [(Rat, (Rat, u32), (Rat, u32)); 5] = [
+        type Surd = (Rat, u32);
+        let table: [(Rat, Surd, Surd); 5] = [
             (r(0, 1), (r(0, 1), 1), (r(1, 1), 1)),
             (r(1, 6), (r(1, 2), 1), (r(1, 2), 3)),
             (r(1, 4), (r(1, 2), 2), (r(1, 2), 2)),
@@ -331,6 +407,34 @@ impl Builder {
             }
         }
         out
+    }
+
+    /// `R · v` for the rotation of `w`.
+    fn rotate(&mut self, w: &Transform, v: [Id; 3]) -> [Id; 3] {
+        rotate(&mut self.graph, w, v)
+    }
+
+    /// `R · v + p` for `w = [R | p]`.
+    fn point(&mut self, w: &Transform, v: [Id; 3]) -> [Id; 3] {
+        let r = self.rotate(w, v);
+        let g = &mut self.graph;
+        [
+            g.add(w.p[0], r[0]),
+            g.add(w.p[1], r[1]),
+            g.add(w.p[2], r[2]),
+        ]
+    }
+
+    /// `w · t`.
+    fn compose(&mut self, w: &Transform, t: &Transform) -> Transform {
+        Transform {
+            cols: [
+                self.rotate(w, t.cols[0]),
+                self.rotate(w, t.cols[1]),
+                self.rotate(w, t.cols[2]),
+            ],
+            p: self.point(w, t.p),
+        }
     }
 
     /// `t · e`, column by column.

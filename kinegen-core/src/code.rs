@@ -51,6 +51,9 @@ pub struct Body {
     pub ops: OpCount,
 }
 
+/// Deepest expression written inline before it gets a `let` of its own.
+const MAX_INLINE_DEPTH: usize = 12;
+
 /// Emits bodies for one chain.
 pub struct Coder<'a> {
     robot: &'a Robot,
@@ -191,16 +194,31 @@ impl<'a> Coder<'a> {
             };
             body.lets.push(format!("let {pat} = {rhs};"));
         }
-        // Shared intermediates.
+        // Shared intermediates; also long single-use chains (a sum of many terms),
+        // cut every few levels so lines stay readable and emission stays shallow.
         let mut temp = 0usize;
+        let mut depth: HashMap<Id, usize> = HashMap::new();
         for (&id, &n) in &uses {
             let node = g.node(id);
-            let bind = n >= 2
+            let shared = n >= 2
                 && match node {
                     Node::Num(_) | Node::Leaf(_) => false,
-                    Node::Neg(x) => !matches!(g.node(*x), Node::Leaf(_) | Node::Num(_)),
+                    // `-c1` once for all the products it signs.
+                    Node::Neg(x) => !matches!(g.node(*x), Node::Num(_)),
                     _ => true,
                 };
+            let d = match node {
+                Node::Num(_) | Node::Leaf(_) => 0,
+                _ => {
+                    1 + children(node)
+                        .iter()
+                        .map(|c| depth.get(c).copied().unwrap_or(0))
+                        .max()
+                        .unwrap_or(0)
+                }
+            };
+            let bind = shared || d > MAX_INLINE_DEPTH;
+            depth.insert(id, if bind { 0 } else { d });
             if !bind {
                 continue;
             }
@@ -273,7 +291,7 @@ impl<'a> Coder<'a> {
                 };
                 let (x, px) = self.expr(a, names, ops);
                 let (y, py) = self.expr(b, names, ops);
-                let x = if px <= 2 && px != 2 {
+                let x = if px < 2 {
                     format!("({x})")
                 } else {
                     x
@@ -284,7 +302,7 @@ impl<'a> Coder<'a> {
             Node::Neg(a) => {
                 ops.neg += 1;
                 let (x, px) = self.expr(*a, names, ops);
-                if px <= 2 && px != 2 || px == 3 {
+                if px < 2 || px == 3 {
                     (format!("-({x})"), 3)
                 } else {
                     (format!("-{x}"), 3)

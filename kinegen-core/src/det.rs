@@ -100,6 +100,13 @@ pub enum DetError {
     TooLarge,
 }
 
+/// Largest frame entry (terms) a determinant is built from: products of larger ones
+/// are slow and their determinant would not be small.
+const MAX_DET_INPUT_TERMS: usize = 100;
+
+/// Largest intermediate polynomial (terms) of a closed-form determinant.
+pub const MAX_DET_TERMS: usize = 400;
+
 /// The square Jacobian whose determinant is taken: the full 6×N for N = 6, or the task
 /// rows when they are as many as the joints.
 pub fn square_rows(robot: &Robot) -> Option<Vec<usize>> {
@@ -149,14 +156,23 @@ pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<F
             }
         }
     }
-    let max_terms = chain.graph.max_terms;
+    // A determinant worth a closed form is small; past this many terms in any
+    // intermediate the numeric LU is cheaper anyway, so give up early.
+    let max_terms = chain.graph.max_terms.min(MAX_DET_TERMS);
     let mut best: Option<(Factored, (usize, usize))> = None;
     let mut reference: Option<Poly> = None;
     // Rank the choices by sparsity (zeros, then terms) and expand only the best few.
-    let mut candidates: Vec<((usize, usize), Vec<Vec<Poly>>)> = Vec::new();
+    type Scored = ((usize, usize), Vec<Vec<Poly>>);
+    let mut candidates: Vec<Scored> = Vec::new();
     for point in &points {
         for cols in &frames {
-            if let Some(m) = matrix(robot, chain, rows, *point, cols) {
+            // Entries past the determinant's budget cannot give a small closed form:
+            // cap the normal forms while building the matrix so they stop early.
+            let saved = chain.graph.max_terms;
+            chain.graph.max_terms = saved.min(MAX_DET_TERMS);
+            let m = matrix(robot, chain, rows, *point, cols);
+            chain.graph.max_terms = saved;
+            if let Some(m) = m {
                 let nonzero = m.iter().flatten().filter(|p| !p.is_zero()).count();
                 let terms = m.iter().flatten().map(Poly::len).sum::<usize>();
                 candidates.push(((nonzero, terms), m));
@@ -169,14 +185,15 @@ pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<F
         for (_, m) in candidates {
             let mut memo = HashMap::new();
             let all_rows: u32 = (1 << n) - 1;
-            let Ok(mut f) = det_rec(
+            let r = det_rec(
                 &chain.graph.ring,
                 &m,
                 all_rows,
                 all_rows,
                 max_terms,
                 &mut memo,
-            ) else {
+            );
+            let Ok(mut f) = r else {
                 continue;
             };
             f.sort();
@@ -216,6 +233,16 @@ fn matrix(
 ) -> Option<Vec<Vec<Poly>>> {
     let n = robot.dof();
     let g = &mut chain.graph;
+    // Inputs past the determinant's budget: no closed form from this choice, and
+    // multiplying their normal forms out would only cost time.
+    let small = |g: &crate::graph::Graph, ids: &[Id]| {
+        ids.iter()
+            .all(|&id| g.nf(id).is_some_and(|p| p.len() <= MAX_DET_INPUT_TERMS))
+    };
+    let flat: Vec<Id> = cols.iter().flatten().copied().chain(point).collect();
+    if !small(g, &flat) || !chain.axes.iter().all(|(z, o)| small(g, z) && small(g, o)) {
+        return None;
+    }
     let zero = g.int(0);
     let mut m = vec![vec![Poly::zero(); n]; rows.len()];
     for (i, joint) in robot.joints.iter().enumerate() {

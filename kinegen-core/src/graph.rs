@@ -305,6 +305,92 @@ impl Graph {
         self.make(Node::Mul(a, b), nf)
     }
 
+    /// The same values with negations moved onto leaves: `−(c1·x)` becomes `(−c1)·x`,
+    /// so that one `−c1` serves every product it appears in, and `−(a − b)` becomes
+    /// `b − a`. Construction keeps signs outside products (that is what lets value
+    /// numbering see `−x` as `x`); emission wants them inside. Returns the new ids of
+    /// `outputs`; normal forms are carried over, so checks still apply.
+    pub fn signs_inward(&mut self, outputs: &[Id]) -> Vec<Id> {
+        // Uses of each reachable node: a shared product or difference stays as it is.
+        let mut uses: HashMap<Id, usize> = HashMap::new();
+        let mut stack = outputs.to_vec();
+        let mut seen = std::collections::HashSet::new();
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
+            for c in crate::code::children(&self.nodes[id as usize]) {
+                *uses.entry(c).or_default() += 1;
+                stack.push(c);
+            }
+        }
+        let mut memo = HashMap::new();
+        outputs
+            .iter()
+            .map(|&o| self.inward(o, &uses, &mut memo))
+            .collect()
+    }
+
+    fn inward(&mut self, id: Id, uses: &HashMap<Id, usize>, memo: &mut HashMap<Id, Id>) -> Id {
+        if let Some(&x) = memo.get(&id) {
+            return x;
+        }
+        let nf = self.nf[id as usize].clone();
+        let out = match self.nodes[id as usize].clone() {
+            Node::Num(_) | Node::Leaf(_) => id,
+            Node::Neg(x) if uses.get(&x).copied().unwrap_or(0) > 1 => {
+                let x = self.inward(x, uses, memo);
+                self.intern(Node::Neg(x), nf)
+            }
+            Node::Neg(x) => match self.nodes[x as usize].clone() {
+                Node::Mul(a, b) => {
+                    let leaf = |g: &Self, i: Id| matches!(g.nodes[i as usize], Node::Leaf(_));
+                    let (l, r) = if leaf(self, a) {
+                        (Some(a), b)
+                    } else if leaf(self, b) {
+                        (Some(b), a)
+                    } else {
+                        (None, x)
+                    };
+                    match l {
+                        Some(l) => {
+                            let nl = self.neg(l);
+                            let r = self.inward(r, uses, memo);
+                            let (p, q) = (nl.min(r), nl.max(r));
+                            self.intern(Node::Mul(p, q), nf)
+                        }
+                        None => {
+                            let x = self.inward(x, uses, memo);
+                            self.intern(Node::Neg(x), nf)
+                        }
+                    }
+                }
+                Node::Sub(a, b) => {
+                    let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
+                    self.intern(Node::Sub(b, a), nf)
+                }
+                _ => {
+                    let x = self.inward(x, uses, memo);
+                    self.intern(Node::Neg(x), nf)
+                }
+            },
+            Node::Add(a, b) => {
+                let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
+                self.intern(Node::Add(a.min(b), a.max(b)), nf)
+            }
+            Node::Sub(a, b) => {
+                let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
+                self.intern(Node::Sub(a, b), nf)
+            }
+            Node::Mul(a, b) => {
+                let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
+                self.intern(Node::Mul(a.min(b), a.max(b)), nf)
+            }
+        };
+        memo.insert(id, out);
+        out
+    }
+
     /// `Σ xᵢ` (0 for none).
     pub fn sum(&mut self, xs: &[Id]) -> Id {
         let mut acc = self.int(0);

@@ -83,7 +83,7 @@ pub fn combine_errors(shape: Vec<DhError>, checks: Vec<DhError>) -> Vec<DhError>
     out.extend(
         checks
             .into_iter()
-            .filter(|e| top(e).map_or(true, |k| !broken.contains(&k))),
+            .filter(|e| top(e).is_none_or(|k| !broken.contains(&k))),
     );
     out
 }

@@ -2,7 +2,7 @@
 //! revolute joints and `[z; 0]` for prismatic ones, with `z`, `o` the joint's axis
 //! and a point on it and `p` the tool point, all in world coordinates.
 
-use crate::chain::{Chain, Transform};
+use crate::chain::{rotate, Chain, Pivot, Transform};
 use crate::dh::{JointKind, Robot};
 use crate::graph::{Graph, Id};
 
@@ -22,21 +22,31 @@ pub fn cross(g: &mut Graph, a: [Id; 3], b: [Id; 3]) -> [Id; 3] {
 }
 
 /// The geometric Jacobian of the tool point in the world frame.
-pub fn geometric(robot: &Robot, chain: &mut Chain) -> Rows {
+///
+/// With a [`Pivot`] the columns of joints after frame `k` are formed in frame `k`
+/// (fewer joints in every product) and rotated into the world frame at the end.
+pub fn geometric(robot: &Robot, chain: &mut Chain, pivot: Option<&Pivot>) -> Rows {
     let n = robot.dof();
     let zero = chain.graph.int(0);
     let mut rows = vec![vec![zero; n]; 6];
-    let p = chain.tool.p;
     for (i, joint) in robot.joints.iter().enumerate() {
-        let (z, o) = chain.axes[i];
+        let local = pivot.filter(|pv| i >= pv.k);
+        let (z, o, p) = match local {
+            Some(pv) => (pv.axes[i - pv.k].0, pv.axes[i - pv.k].1, pv.tool.p),
+            None => (chain.axes[i].0, chain.axes[i].1, chain.tool.p),
+        };
         let g = &mut chain.graph;
-        let (lin, ang) = match joint.kind {
+        let (mut lin, mut ang) = match joint.kind {
             JointKind::Revolute => {
                 let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
                 (cross(g, z, r), z)
             }
             JointKind::Prismatic => (z, [zero; 3]),
         };
+        if let Some(pv) = local {
+            lin = rotate(g, &pv.frame, lin);
+            ang = rotate(g, &pv.frame, ang);
+        }
         for k in 0..3 {
             rows[k][i] = lin[k];
             rows[k + 3][i] = ang[k];

@@ -38,12 +38,49 @@ pub fn rows(t: &Transform) -> [[Id; 4]; 3] {
 }
 
 impl Model {
-    /// Build the chain and all outputs.
+    /// Build the chain and all outputs, choosing the cheapest middle frame.
+    ///
+    /// The Jacobian is formed with the chain built left to right from the base, and
+    /// with the tail of the chain expressed in a middle frame `k` (1 and N−1) (see
+    /// [`crate::chain::Pivot`]); the variant whose `fk` and `jacobian` take the fewest
+    /// operations after sharing wins (ties: the plain chain, then the smaller `k`).
+    /// All variants compute the same values — they are different evaluation orders.
     pub fn build(robot: &Robot, options: &Options) -> Model {
-        let mut chain = Chain::new(robot, options.budget.max_terms());
+        let n = robot.dof();
+        let mut best: Option<(usize, Model)> = None;
+        // Candidates: none, frame 1 (a vertical first axis drops out of everything),
+        // frame N−1 (the wrist); trying all N costs N chain builds for little gain.
+        let mut candidates = vec![None, Some(1)];
+        if n > 2 {
+            candidates.push(Some(n - 1));
+        }
+        for pivot in candidates {
+            let model = Model::build_with(robot, options, pivot);
+            let cost = model.cost(robot);
+            if best.as_ref().is_none_or(|(c, _)| cost < *c) {
+                best = Some((cost, model));
+            }
+            if model_overflowed(&best) {
+                break;
+            }
+        }
+        best.map(|(_, m)| m).expect("at least one variant")
+    }
+
+    /// Operations of `fk` plus `jacobian` after sharing.
+    fn cost(&self, robot: &Robot) -> usize {
+        let coder = crate::code::Coder::new(robot, &self.chain);
+        let fk: Vec<Id> = self.fk_rows.iter().flatten().copied().collect();
+        let j: Vec<Id> = self.jacobian.iter().flatten().copied().collect();
+        coder.body(&fk).ops.total() + coder.body(&j).ops.total()
+    }
+
+    /// Build the chain and all outputs with the given middle frame (`None`: none).
+    pub fn build_with(robot: &Robot, options: &Options, pivot: Option<usize>) -> Model {
+        let (mut chain, pivot) = Chain::with_pivot(robot, options.budget.max_terms(), pivot);
         let fk_rows = rows(&chain.tool);
-        let frame_rows = chain.frames.iter().map(rows).collect();
-        let jacobian = jacobian::geometric(robot, &mut chain);
+        let frame_rows: Vec<[[Id; 4]; 3]> = chain.frames.iter().map(rows).collect();
+        let jacobian = jacobian::geometric(robot, &mut chain, pivot.as_ref());
         let tool = chain.tool;
         let jacobian_ee = jacobian::rotate_into(&mut chain.graph, &tool, &jacobian);
         let task = robot
@@ -51,6 +88,11 @@ impl Model {
             .as_ref()
             .map(|t| t.iter().map(|r| jacobian[r.index()].clone()).collect())
             .unwrap_or_default();
+        let g = &mut chain.graph;
+        let fk_rows = inward_rows(g, &fk_rows);
+        let frame_rows: Vec<[[Id; 4]; 3]> = frame_rows.iter().map(|r| inward_rows(g, r)).collect();
+        let [jacobian, jacobian_ee, task] =
+            [&jacobian, &jacobian_ee, &task].map(|m| inward_matrix(g, m));
         let mut notes = Vec::new();
         if chain.graph.nf_overflows > 0 {
             notes.push(format!(
@@ -68,6 +110,29 @@ impl Model {
             notes,
         }
     }
+}
+
+fn inward_rows(g: &mut crate::graph::Graph, r: &[[Id; 4]; 3]) -> [[Id; 4]; 3] {
+    let ids: Vec<Id> = r.iter().flatten().copied().collect();
+    let out = g.signs_inward(&ids);
+    let mut r2 = [[0; 4]; 3];
+    for (k, id) in out.into_iter().enumerate() {
+        r2[k / 4][k % 4] = id;
+    }
+    r2
+}
+
+fn inward_matrix(g: &mut crate::graph::Graph, m: &Rows) -> Rows {
+    let ids: Vec<Id> = m.iter().flatten().copied().collect();
+    let out = g.signs_inward(&ids);
+    let w = m.first().map_or(0, Vec::len).max(1);
+    out.chunks(w).map(<[Id]>::to_vec).collect()
+}
+
+/// Past the normal-form budget the variants are not worth comparing: stop trying.
+fn model_overflowed(best: &Option<(usize, Model)>) -> bool {
+    best.as_ref()
+        .is_some_and(|(_, m)| m.chain.graph.nf_overflows > 0)
 }
 
 impl Model {
@@ -106,6 +171,9 @@ impl Model {
             .collect()
     }
 }
+
+/// Largest determinant (terms summed over its factors) emitted in closed form.
+const MAX_FACTOR_TERMS: usize = 64;
 
 /// The closed-form Jacobian determinant and the singular factors it implies.
 #[derive(Clone, Debug)]
@@ -152,6 +220,12 @@ impl Model {
         let rows = det::square_rows(robot).ok_or("the Jacobian is not square")?;
         let factored = det::determinant(robot, &mut self.chain, &rows)
             .map_err(|e| format!("closed-form determinant over budget ({e:?})"))?;
+        let size: usize = factored.factors.iter().map(|f| f.len()).sum();
+        if size > MAX_FACTOR_TERMS {
+            return Err(format!(
+                "the closed form has {size} terms in its factors, more than a numeric LU costs"
+            ));
+        }
         let mut factors = Vec::new();
         let mut factored = factored;
         for (poly, power) in det::powers(&factored.clone()) {

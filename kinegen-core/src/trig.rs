@@ -225,7 +225,7 @@ pub fn angle_text(chain: &Chain, angles: &[usize]) -> String {
         .map(|&a| match &chain.angles[a].source {
             AngleSource::Joint { joint, offset } if offset.is_zero() => format!("q{}", joint + 1),
             AngleSource::Joint { joint, offset } => format!("(q{} + {offset})", joint + 1),
-            AngleSource::Constant(v) => format!("({v})"),
+            AngleSource::Constant(v) => format!("{v}"),
         })
         .collect();
     parts.join("+")

@@ -97,8 +97,11 @@ fn robot_strategy() -> impl Strategy<Value = Robot> {
         })
 }
 
-fn check(robot: &Robot, q: &[f64]) {
-    let model = Model::build(robot, &Options::default());
+/// Every evaluation order (plain chain, or the tail built in middle frame `pivot`)
+/// must give the reference values; cases cycle through them.
+fn check(robot: &Robot, q: &[f64], pivot: usize) {
+    let pivot = (pivot > 0).then_some(pivot);
+    let model = Model::build_with(robot, &Options::default(), pivot);
     let num = NumericRobot::new(robot).unwrap();
     let n = robot.dof();
     let t = num.fk(q).unwrap();
@@ -107,6 +110,20 @@ fn check(robot: &Robot, q: &[f64]) {
     for r in 0..3 {
         for c in 0..4 {
             assert!((got[r * 4 + c] - t[(r, c)]).abs() < 1e-9, "fk[{r}][{c}]");
+        }
+    }
+    let frames = num.frames(q).unwrap();
+    for (i, rows) in model.frame_rows.iter().enumerate() {
+        let ids: Vec<_> = rows.iter().flatten().copied().collect();
+        let got = model.eval(robot, q, &ids);
+        for r in 0..3 {
+            for c in 0..4 {
+                let want = frames[i][(r, c)];
+                assert!(
+                    (got[r * 4 + c] - want).abs() < 1e-9,
+                    "frame {i} [{r}][{c}] (pivot {pivot:?})"
+                );
+            }
         }
     }
     let j = num.jacobian(q).unwrap();
@@ -118,7 +135,7 @@ fn check(robot: &Robot, q: &[f64]) {
             for c in 0..n {
                 assert!(
                     (got[r * n + c] - reference[(r, c)]).abs() < 1e-9,
-                    "J[{r}][{c}]: {} vs {}",
+                    "J[{r}][{c}]: {} vs {} (pivot {pivot:?})",
                     got[r * n + c],
                     reference[(r, c)]
                 );
@@ -130,8 +147,12 @@ fn check(robot: &Robot, q: &[f64]) {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
     #[test]
-    fn symbolic_equals_numeric(robot in robot_strategy(), seed in prop::collection::vec(-3.0f64..3.0, 7)) {
+    fn symbolic_equals_numeric(
+        robot in robot_strategy(),
+        seed in prop::collection::vec(-3.0f64..3.0, 7),
+        pivot in 0usize..7,
+    ) {
         let q = &seed[..robot.dof()];
-        check(&robot, q);
+        check(&robot, q, pivot);
     }
 }
