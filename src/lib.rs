@@ -83,6 +83,9 @@ pub trait TaskKinematics<const N: usize, const M: usize>: Kinematics<N> {
 /// A closed form the generated code computes, for people: `J[0][1]`, `det`, …
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Formula {
+    /// The generated function it belongs to (`"fk"`, `"jacobian"`, `"task_jacobian"`,
+    /// `"jacobian_det"`, `"singular_factors"`); intermediate names are per function.
+    pub function: &'static str,
     /// What it is (`"T[0][3]"`, `"J[2][1]"`, `"det"`, `"t4"` for a shared intermediate).
     pub name: &'static str,
     /// Plain text, Rust syntax (`a2 * c2 + a3 * c23`).

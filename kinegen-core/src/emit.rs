@@ -19,6 +19,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
     let ident = header.ident.to_string();
     let mut notes = model.notes.clone();
     let mut items = String::new();
+    let mut formulas = Formulas::default();
 
     // The struct and its Default.
     let mut fields = String::new();
@@ -69,6 +70,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
     method(&mut methods, &doc, "fk", &qty, &mat4, &body, |o| {
         transform_literal(&coder, o)
     });
+    formulas.add_body("fk", &body, &matrix_names("T", 3, 4));
     let fk_ops = body.ops;
 
     // frames
@@ -110,6 +112,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
     method(&mut methods, &doc, "jacobian", &qty, &jac, &body, |o| {
         rows_literal(o, n)
     });
+    formulas.add_body("jacobian", &body, &matrix_names("J", 6, n));
     let jac_ops = body.ops;
 
     // jacobian_ee
@@ -172,6 +175,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
             &body,
             |o| rows_literal(o, n),
         );
+        formulas.add_body("task_jacobian", &body, &matrix_names("Jt", task.len(), n));
     }
 
     // jacobian_det, singular factors
@@ -202,6 +206,10 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
             method(&mut methods, &doc, "jacobian_det", &qty, f, &body, |o| {
                 o[0].clone()
             });
+            formulas.push("jacobian_det", "det", &d.text, &d.latex);
+            for (k, x) in d.factors.iter().enumerate() {
+                formulas.push("singular_factors", &format!("f[{k}]"), &x.text, &x.latex);
+            }
             let fbody = coder.body(&ids[1..]);
             let k = d.factors.len();
             let list: Vec<String> = d
@@ -271,6 +279,15 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
         }
         _ => {}
     }
+
+    let _ = writeln!(
+        methods,
+        "/// The closed forms above as data, for people and tools: each function's shared \
+         intermediates (`t4`, `c23`, in order) then its outputs (`T[0][3]`, `J[2][1]`, `det`, \
+         the singular factors `f[k]`), as plain text and LaTeX.\n\
+         pub const FORMULAS: &'static [::kinegen::Formula] = &[{}];",
+        formulas.rust()
+    );
 
     // limits
     let lims: Vec<String> = robot
@@ -354,6 +371,43 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
             jacobian: jac_ops,
             det: det_ops,
         },
+    }
+}
+
+/// `(function, name, text, latex)` of every formula, for the `FORMULAS` constant.
+#[derive(Default)]
+struct Formulas(Vec<[String; 4]>);
+
+impl Formulas {
+    fn push(&mut self, function: &str, name: &str, text: &str, latex: &str) {
+        self.0
+            .push([function.into(), name.into(), text.into(), latex.into()]);
+    }
+
+    /// The intermediates and outputs of a body (Rust syntax; LaTeX rendered from it).
+    fn add_body(&mut self, function: &str, body: &Body, names: &[String]) {
+        let defs = body.defs.iter().map(|(n, e)| (n.as_str(), e.as_str()));
+        let outs = names
+            .iter()
+            .map(String::as_str)
+            .zip(body.outputs.iter().map(String::as_str));
+        for (name, expr) in defs.chain(outs) {
+            let latex = crate::latex::to_latex(expr).unwrap_or_else(|_| expr.to_string());
+            self.push(function, name, expr, &latex);
+        }
+    }
+
+    fn rust(&self) -> String {
+        let items: Vec<String> = self
+            .0
+            .iter()
+            .map(|[f, n, t, l]| {
+                format!(
+                    "::kinegen::Formula {{ function: {f:?}, name: {n:?}, text: {t:?}, latex: {l:?} }}"
+                )
+            })
+            .collect();
+        items.join(", ")
     }
 }
 
@@ -451,13 +505,39 @@ fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
         body.ops.trig
     );
     for (n, e) in &body.defs {
-        let _ = writeln!(s, "{n} = {e}");
+        match angle_sum_meaning(n) {
+            Some(m) => {
+                let _ = writeln!(s, "{n} = {e}    // = {m}");
+            }
+            None => {
+                let _ = writeln!(s, "{n} = {e}");
+            }
+        }
     }
     for (n, e) in names.iter().zip(&body.outputs) {
         let _ = writeln!(s, "{n} = {e}");
     }
     s.push_str("```");
     s
+}
+
+/// `c23` → `cos(q2+q3)`, `s1_2` → `sin(q1+q2)`: what an angle-sum name means.
+fn angle_sum_meaning(name: &str) -> Option<String> {
+    let f = match name.chars().next()? {
+        's' => "sin",
+        'c' => "cos",
+        _ => return None,
+    };
+    let rest = &name[1..];
+    if rest.is_empty() || !rest.chars().all(|c| c.is_ascii_digit() || c == '_') {
+        return None;
+    }
+    let joints: Vec<String> = if rest.contains('_') {
+        rest.split('_').map(|j| format!("q{j}")).collect()
+    } else {
+        rest.chars().map(|j| format!("q{j}")).collect()
+    };
+    (joints.len() >= 2).then(|| format!("{f}({})", joints.join("+")))
 }
 
 fn method(
