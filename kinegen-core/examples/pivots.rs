@@ -15,12 +15,13 @@ fn main() {
         let mut both = fk.clone();
         both.extend(&j);
         println!(
-            "pivot {pivot:?}: fk {} jacobian {} fused {} ({:.1} ms, {} nodes)",
+            "pivot {pivot:?}: fk {} jacobian {} fused {} ({:.1} ms, {} nodes; polish {:?})",
             coder.body(&fk).ops.total(),
             coder.body(&j).ops.total(),
             coder.body(&both).ops.total(),
             t.elapsed().as_secs_f64() * 1e3,
-            m.chain.graph.len()
+            m.chain.graph.len(),
+            m.polish
         );
     }
 }

@@ -291,11 +291,7 @@ impl<'a> Coder<'a> {
                 };
                 let (x, px) = self.expr(a, names, ops);
                 let (y, py) = self.expr(b, names, ops);
-                let x = if px < 2 {
-                    format!("({x})")
-                } else {
-                    x
-                };
+                let x = if px < 2 { format!("({x})") } else { x };
                 let y = if py <= 2 { format!("({y})") } else { y };
                 (format!("{x} * {y}"), 2)
             }

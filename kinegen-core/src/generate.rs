@@ -76,6 +76,11 @@ impl Default for Budget {
 pub struct Options {
     /// Bounds on simplification.
     pub budget: Budget,
+    /// Extra rewrite rules `(lhs, rhs)` for the e-graph polish, in egg's pattern
+    /// syntax (`("(* ?a (+ ?b ?c))", "(+ (* ?a ?b) (* ?a ?c))")`). For experiments:
+    /// every rewritten expression is checked against the unsimplified one, so a wrong
+    /// rule is caught and reported, never emitted (see [`crate::polish`]).
+    pub extra_rewrites: Vec<(String, String)>,
 }
 
 /// The engine's output.

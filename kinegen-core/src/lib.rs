@@ -15,6 +15,7 @@ pub mod jacobian;
 pub mod latex;
 pub mod model;
 pub mod numeric;
+pub mod polish;
 pub mod poly;
 pub mod toml_input;
 pub mod trig;

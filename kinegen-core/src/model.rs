@@ -23,6 +23,8 @@ pub struct Model {
     pub task: Rows,
     /// Notes for the user (budgets hit, fallbacks).
     pub notes: Vec<String>,
+    /// What the e-graph polish changed and rejected.
+    pub polish: crate::polish::Report,
 }
 
 /// Rows `[R | p]` of a transform.
@@ -88,12 +90,63 @@ impl Model {
             .as_ref()
             .map(|t| t.iter().map(|r| jacobian[r.index()].clone()).collect())
             .unwrap_or_default();
+        // e-graph polish of every inline expression, checked before use.
+        let mut all: Vec<Id> = fk_rows.iter().flatten().copied().collect();
+        for r in &frame_rows {
+            all.extend(r.iter().flatten());
+        }
+        for m in [&jacobian, &jacobian_ee, &task] {
+            all.extend(m.iter().flatten());
+        }
+        let mut polish = crate::polish::Report::default();
+        let new = crate::polish::polish(
+            &mut chain,
+            &all,
+            &options.budget,
+            &options.extra_rewrites,
+            &mut polish,
+        );
+        let remap: std::collections::HashMap<Id, Id> = all.iter().copied().zip(new).collect();
+        let re = |x: &Id| remap[x];
+        let fk_rows = fk_rows.map(|r| r.map(|x| re(&x)));
+        let frame_rows: Vec<[[Id; 4]; 3]> = frame_rows
+            .iter()
+            .map(|f| f.map(|r| r.map(|x| re(&x))))
+            .collect();
+        let [jacobian, jacobian_ee, task] = [&jacobian, &jacobian_ee, &task].map(|m| {
+            m.iter()
+                .map(|row| row.iter().map(re).collect())
+                .collect::<Rows>()
+        });
         let g = &mut chain.graph;
+        let before: Vec<Id> = flat(&fk_rows, &frame_rows, [&jacobian, &jacobian_ee, &task]);
         let fk_rows = inward_rows(g, &fk_rows);
         let frame_rows: Vec<[[Id; 4]; 3]> = frame_rows.iter().map(|r| inward_rows(g, r)).collect();
         let [jacobian, jacobian_ee, task] =
             [&jacobian, &jacobian_ee, &task].map(|m| inward_matrix(g, m));
-        let mut notes = Vec::new();
+        let mut notes = polish.notes.clone();
+        // Moving signs copies normal forms instead of recomputing them: check values.
+        let after = flat(&fk_rows, &frame_rows, [&jacobian, &jacobian_ee, &task]);
+        let probe = crate::polish::Probe::new(&chain);
+        let bad = before
+            .iter()
+            .zip(&after)
+            .any(|(&b, &a)| a != b && !probe.same_values(&chain.graph, a, b));
+        let (fk_rows, frame_rows, jacobian, jacobian_ee, task) = if bad {
+            notes.push(
+                "internal check failed after moving signs: the unsimplified expressions are emitted"
+                    .into(),
+            );
+            let mut it = before.into_iter();
+            unflat(
+                &mut it,
+                &fk_rows,
+                &frame_rows,
+                [&jacobian, &jacobian_ee, &task],
+            )
+        } else {
+            (fk_rows, frame_rows, jacobian, jacobian_ee, task)
+        };
         if chain.graph.nf_overflows > 0 {
             notes.push(format!(
                 "{} expressions exceeded the normal-form budget of {} terms: they are shared structurally only",
@@ -108,8 +161,43 @@ impl Model {
             jacobian_ee,
             task,
             notes,
+            polish,
         }
     }
+}
+
+fn flat(fk: &[[Id; 4]; 3], frames: &[[[Id; 4]; 3]], ms: [&Rows; 3]) -> Vec<Id> {
+    let mut v: Vec<Id> = fk.iter().flatten().copied().collect();
+    for f in frames {
+        v.extend(f.iter().flatten());
+    }
+    for m in ms {
+        v.extend(m.iter().flatten());
+    }
+    v
+}
+
+type Outputs = ([[Id; 4]; 3], Vec<[[Id; 4]; 3]>, Rows, Rows, Rows);
+
+/// The inverse of [`flat`], shaped like the given outputs.
+fn unflat(
+    it: &mut impl Iterator<Item = Id>,
+    fk: &[[Id; 4]; 3],
+    frames: &[[[Id; 4]; 3]],
+    ms: [&Rows; 3],
+) -> Outputs {
+    let mut next = || it.next().expect("same shape");
+    let fk = fk.map(|r| r.map(|_| next()));
+    let frames = frames
+        .iter()
+        .map(|f| f.map(|r| r.map(|_| next())))
+        .collect();
+    let [a, b, c] = ms.map(|m| {
+        m.iter()
+            .map(|row| row.iter().map(|_| next()).collect())
+            .collect::<Rows>()
+    });
+    (fk, frames, a, b, c)
 }
 
 fn inward_rows(g: &mut crate::graph::Graph, r: &[[Id; 4]; 3]) -> [[Id; 4]; 3] {

@@ -109,6 +109,7 @@ pub fn load_str(src: &str, file_label: &str) -> Result<(Robot, Options), LoadErr
         Ok(robot) if file.shape_errors.is_empty() => {
             let options = Options {
                 budget: file.budget.unwrap_or_default(),
+                ..Options::default()
             };
             return Ok((robot, options));
         }

@@ -80,6 +80,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
     };
     let options = Options {
         budget: budget.unwrap_or_else(Budget::default),
+        ..Options::default()
     };
     let generated = kinegen_core::generate(&robot, &header, &options);
     let tokens = generated.tokens;

@@ -1,0 +1,395 @@
+//! The e-graph polish: small rewrites under an operation-count cost, each result
+//! checked against the unsimplified expression before it replaces it.
+//!
+//! The exact core already shares equal values and the chain is built in its
+//! cheapest frame; what remains are local forms — `a·b + a·c` → `a·(b + c)`,
+//! `−(a − b)` → `b − a`, `a + (−b)` → `a − b` — that depend on how terms happen to
+//! line up. Each expression the generated code writes inline (everything between two
+//! `let`s) goes through [`egg`] with these rules, bounded by the [`Budget`]'s node
+//! and iteration limits; the cheapest form found replaces the original only if
+//!
+//! - it is cheaper, and
+//! - **the check passes**: its exact normal form equals the original's (when both
+//!   are within the term budget), else its value equals the original's at random
+//!   points (16, relative 1e-9).
+//!
+//! A failed check keeps the original (correct) expression and leaves a note. Extra
+//! rules can be passed in [`crate::generate::Options::extra_rewrites`] — for
+//! experiments, and for the test that shows a wrong rule cannot produce a wrong
+//! formula.
+
+use std::collections::HashMap;
+
+use egg::{define_language, rewrite as rw, Id as EId, Pattern, RecExpr, Rewrite, Runner, Symbol};
+
+use crate::chain::Chain;
+use crate::code::children;
+use crate::generate::Budget;
+use crate::graph::{Graph, Id, Node};
+
+define_language! {
+    /// Arithmetic over the graph's nodes: leaves `g17` stand for graph node 17.
+    pub enum Arith {
+        "+" = Add([EId; 2]),
+        "-" = Sub([EId; 2]),
+        "*" = Mul([EId; 2]),
+        "neg" = Neg(EId),
+        Leaf(Symbol),
+    }
+}
+
+/// The built-in rules: ring identities only (no `s² + c² = 1`), so every rewrite is
+/// exact for any values of the leaves.
+fn rules() -> Vec<Rewrite<Arith, ()>> {
+    vec![
+        rw!("comm-add"; "(+ ?a ?b)" => "(+ ?b ?a)"),
+        rw!("comm-mul"; "(* ?a ?b)" => "(* ?b ?a)"),
+        rw!("factor-add"; "(+ (* ?a ?b) (* ?a ?c))" => "(* ?a (+ ?b ?c))"),
+        rw!("factor-sub"; "(- (* ?a ?b) (* ?a ?c))" => "(* ?a (- ?b ?c))"),
+        rw!("add-neg"; "(+ ?a (neg ?b))" => "(- ?a ?b)"),
+        rw!("sub-neg"; "(- ?a (neg ?b))" => "(+ ?a ?b)"),
+        rw!("neg-sub"; "(neg (- ?a ?b))" => "(- ?b ?a)"),
+        rw!("neg-neg"; "(neg (neg ?a))" => "?a"),
+        rw!("neg-mul"; "(* (neg ?a) ?b)" => "(neg (* ?a ?b))"),
+        rw!("neg-add"; "(neg (+ ?a ?b))" => "(- (neg ?a) ?b)"),
+    ]
+}
+
+/// Parse user rules `(lhs, rhs)` in egg's pattern syntax.
+fn extra_rules(extra: &[(String, String)]) -> Result<Vec<Rewrite<Arith, ()>>, String> {
+    extra
+        .iter()
+        .enumerate()
+        .map(|(i, (l, r))| {
+            let lhs: Pattern<Arith> = l.parse().map_err(|e| format!("rule {i} lhs `{l}`: {e}"))?;
+            let rhs: Pattern<Arith> = r.parse().map_err(|e| format!("rule {i} rhs `{r}`: {e}"))?;
+            Rewrite::new(format!("extra-{i}"), lhs, rhs).map_err(|e| format!("rule {i}: {e}"))
+        })
+        .collect()
+}
+
+/// Operations of an expression: leaves are free.
+struct OpCost;
+
+impl egg::CostFunction<Arith> for OpCost {
+    type Cost = usize;
+    fn cost<C: FnMut(EId) -> usize>(&mut self, enode: &Arith, mut costs: C) -> usize {
+        match enode {
+            Arith::Leaf(_) => 0,
+            Arith::Neg(a) => 1 + costs(*a),
+            Arith::Add([a, b]) | Arith::Sub([a, b]) | Arith::Mul([a, b]) => {
+                1 + costs(*a) + costs(*b)
+            }
+        }
+    }
+}
+
+/// What the polish did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Report {
+    /// Expressions replaced by a cheaper, checked form.
+    pub improved: usize,
+    /// Operations saved (tree count, before sharing).
+    pub saved: usize,
+    /// Cheaper forms rejected by the check (a rule is wrong: the original is kept).
+    pub rejected: usize,
+    /// Notes for the user.
+    pub notes: Vec<String>,
+}
+
+/// Largest inline expression (operations) handed to the e-graph; larger ones are
+/// cut at shared intermediates anyway, this only bounds pathological cases.
+const MAX_TREE: usize = 40;
+
+/// Polish the expressions reachable from `outputs`; returns their new ids.
+pub fn polish(
+    chain: &mut Chain,
+    outputs: &[Id],
+    budget: &Budget,
+    extra: &[(String, String)],
+    report: &mut Report,
+) -> Vec<Id> {
+    let mut rules = rules();
+    match extra_rules(extra) {
+        Ok(mut r) => rules.append(&mut r),
+        Err(e) => report
+            .notes
+            .push(format!("polish: extra rewrite ignored: {e}")),
+    }
+    let probe = Probe::new(chain);
+    let g = &mut chain.graph;
+    // Roots: outputs and nodes used more than once (they become `let`s).
+    let mut uses: HashMap<Id, usize> = HashMap::new();
+    let mut order: Vec<Id> = Vec::new();
+    let mut stack: Vec<Id> = outputs.to_vec();
+    let mut seen = std::collections::HashSet::new();
+    while let Some(id) = stack.pop() {
+        if !seen.insert(id) {
+            continue;
+        }
+        order.push(id);
+        for c in children(g.node(id)) {
+            *uses.entry(c).or_default() += 1;
+            stack.push(c);
+        }
+    }
+    order.sort_unstable();
+    let is_root = |id: Id, uses: &HashMap<Id, usize>| {
+        outputs.contains(&id) || uses.get(&id).copied().unwrap_or(0) >= 2
+    };
+    let mut map: HashMap<Id, Id> = HashMap::new();
+    for &id in &order {
+        if matches!(g.node(id), Node::Num(_) | Node::Leaf(_)) || !is_root(id, &uses) {
+            continue;
+        }
+        // The inline tree under this root, leaves mapped to their polished ids.
+        let mut expr = RecExpr::default();
+        let mut size = 0;
+        let mut remapped = false;
+        to_expr(
+            g,
+            id,
+            true,
+            &uses,
+            outputs,
+            &map,
+            &mut expr,
+            &mut size,
+            &mut remapped,
+        );
+        // The unsimplified expression, on the (already checked) polished operands;
+        // untouched when none of them changed (rebuilding would re-canonicalise it).
+        let original = if remapped {
+            from_expr(g, &expr).unwrap_or(id)
+        } else {
+            id
+        };
+        if original != id {
+            map.insert(id, original);
+        }
+        if size < 2 {
+            continue;
+        }
+        let runner = Runner::default()
+            .with_node_limit(budget.nodes.max(1))
+            .with_iter_limit(budget.iterations.max(1))
+            .with_time_limit(std::time::Duration::from_millis(budget.time_ms.max(1)))
+            .with_expr(&expr)
+            .run(&rules);
+        let extractor = egg::Extractor::new(&runner.egraph, OpCost);
+        let (cost, best) = extractor.find_best(runner.roots[0]);
+        let candidate = if cost < size {
+            from_expr(g, &best)
+        } else {
+            None
+        };
+        if let Some(new) = candidate.filter(|&new| new != original) {
+            if probe.same(g, new, original) {
+                report.improved += 1;
+                report.saved += size - cost;
+                map.insert(id, new);
+            } else {
+                report.rejected += 1;
+            }
+        }
+    }
+    if report.rejected > 0 {
+        report.notes.push(format!(
+            "polish: {} rewritten expressions failed the check against the unsimplified \
+             expression and were not used (the correct, unsimplified form is emitted)",
+            report.rejected
+        ));
+    }
+    outputs
+        .iter()
+        .map(|o| map.get(o).copied().unwrap_or(*o))
+        .collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn to_expr(
+    g: &Graph,
+    id: Id,
+    top: bool,
+    uses: &HashMap<Id, usize>,
+    outputs: &[Id],
+    map: &HashMap<Id, Id>,
+    expr: &mut RecExpr<Arith>,
+    size: &mut usize,
+    remapped: &mut bool,
+) -> EId {
+    let node = g.node(id);
+    let leaf = !top
+        && (matches!(node, Node::Num(_) | Node::Leaf(_))
+            || outputs.contains(&id)
+            || uses.get(&id).copied().unwrap_or(0) >= 2
+            || *size >= MAX_TREE);
+    if leaf {
+        let id = match map.get(&id) {
+            Some(&new) => {
+                *remapped = true;
+                new
+            }
+            None => id,
+        };
+        return expr.add(Arith::Leaf(Symbol::from(format!("g{id}"))));
+    }
+    *size += 1;
+    let mut sub = |x: Id, expr: &mut RecExpr<Arith>, size: &mut usize| {
+        to_expr(g, x, false, uses, outputs, map, expr, size, remapped)
+    };
+    match *node {
+        Node::Add(a, b) => {
+            let (x, y) = (sub(a, expr, size), sub(b, expr, size));
+            expr.add(Arith::Add([x, y]))
+        }
+        Node::Sub(a, b) => {
+            let (x, y) = (sub(a, expr, size), sub(b, expr, size));
+            expr.add(Arith::Sub([x, y]))
+        }
+        Node::Mul(a, b) => {
+            let (x, y) = (sub(a, expr, size), sub(b, expr, size));
+            expr.add(Arith::Mul([x, y]))
+        }
+        Node::Neg(a) => {
+            let x = sub(a, expr, size);
+            expr.add(Arith::Neg(x))
+        }
+        Node::Num(_) | Node::Leaf(_) => unreachable!("handled above"),
+    }
+}
+
+/// Build an extracted expression in the graph (its normal form computed afresh from
+/// the structure, never copied from the original).
+fn from_expr(g: &mut Graph, expr: &RecExpr<Arith>) -> Option<Id> {
+    let mut ids: Vec<Id> = Vec::with_capacity(expr.as_ref().len());
+    for node in expr.as_ref() {
+        let at = |i: &EId| ids[usize::from(*i)];
+        let id = match node {
+            Arith::Leaf(s) => s.as_str().strip_prefix('g')?.parse().ok()?,
+            Arith::Add([a, b]) => g.add(at(a), at(b)),
+            Arith::Sub([a, b]) => g.sub(at(a), at(b)),
+            Arith::Mul([a, b]) => g.mul(at(a), at(b)),
+            Arith::Neg(a) => g.neg(at(a)),
+        };
+        ids.push(id);
+    }
+    ids.last().copied()
+}
+
+/// The check: exact normal forms when both are known, else values at random points.
+pub(crate) struct Probe {
+    points: Vec<Vec<f64>>,
+}
+
+impl Probe {
+    pub(crate) fn new(chain: &Chain) -> Self {
+        use crate::poly::VarKind;
+        // A fixed-seed generator: the check must not make the output nondeterministic.
+        let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let ring = &chain.graph.ring;
+        let points = (0..16)
+            .map(|_| {
+                let mut vals: Vec<f64> = (0..ring.len())
+                    .map(|v| match ring.kind(v as u32) {
+                        VarKind::Sqrt(k) => (*k as f64).sqrt(),
+                        _ => 0.5 + next(),
+                    })
+                    .collect();
+                for a in &chain.angles {
+                    let x = (next() - 0.5) * 2.0 * std::f64::consts::PI;
+                    vals[a.vars.0 as usize] = x.sin();
+                    vals[a.vars.1 as usize] = x.cos();
+                }
+                vals
+            })
+            .collect();
+        Probe { points }
+    }
+
+    fn same(&self, g: &Graph, a: Id, b: Id) -> bool {
+        if let (Some(x), Some(y)) = (g.nf(a), g.nf(b)) {
+            return x == y;
+        }
+        self.same_values(g, a, b)
+    }
+
+    /// Values agree at every point (for rewrites whose normal forms are not recomputed).
+    pub(crate) fn same_values(&self, g: &Graph, a: Id, b: Id) -> bool {
+        self.points.iter().all(|p| {
+            let x = g.eval(a, &|v| p[v as usize]);
+            let y = g.eval(b, &|v| p[v as usize]);
+            (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()))
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A chain with leaves to build expressions from (planar RR: s1, c1, s2, c2, L1, L2).
+    fn chain() -> Chain {
+        let src = "name = \"RR\"\nconvention = \"standard\"\n[params]\nL1 = 1.0\nL2 = 0.5\n\
+                   [[joints]]\ntype = \"revolute\"\na = \"L1\"\nalpha = 0\nd = 0\n\
+                   [[joints]]\ntype = \"revolute\"\na = \"L2\"\nalpha = 0\nd = 0\n";
+        let (robot, _) = crate::toml_input::load_str(src, "rr.toml").unwrap();
+        Chain::new(&robot, 1000)
+    }
+
+    fn leaves(c: &mut Chain) -> (Id, Id, Id) {
+        let ring = &c.graph.ring;
+        let v: Vec<u32> = (0..ring.len() as u32).collect();
+        let l1 = v.iter().copied().find(|&x| ring.name(x) == "L1").unwrap();
+        let s1 = v.iter().copied().find(|&x| ring.name(x) == "s1").unwrap();
+        let c2 = v.iter().copied().find(|&x| ring.name(x) == "c2").unwrap();
+        (c.graph.leaf(l1), c.graph.leaf(s1), c.graph.leaf(c2))
+    }
+
+    #[test]
+    fn factors_a_common_factor_and_checks_it() {
+        let mut c = chain();
+        let (a, b, d) = leaves(&mut c);
+        let ab = c.graph.mul(a, b);
+        let ad = c.graph.mul(a, d);
+        let e = c.graph.add(ab, ad);
+        let mut report = Report::default();
+        let out = polish(&mut c, &[e], &Budget::default(), &[], &mut report);
+        assert_eq!((report.improved, report.rejected), (1, 0), "{report:?}");
+        assert_eq!(c.graph.nf(out[0]), c.graph.nf(e));
+        assert!(matches!(c.graph.node(out[0]), Node::Mul(..)));
+    }
+
+    #[test]
+    fn a_wrong_rule_is_caught_and_the_original_kept() {
+        let mut c = chain();
+        let (a, b, d) = leaves(&mut c);
+        let ab = c.graph.mul(a, b);
+        let e = c.graph.add(ab, d);
+        let mut report = Report::default();
+        // Wrong: drops a term, and is cheaper, so the extraction picks it.
+        let wrong = [("(+ ?x ?y)".to_string(), "?x".to_string())];
+        let out = polish(&mut c, &[e], &Budget::default(), &wrong, &mut report);
+        assert_eq!(report.rejected, 1, "{report:?}");
+        assert_eq!(out[0], e, "the unsimplified expression is kept");
+        assert!(report.notes.iter().any(|n| n.contains("failed the check")));
+    }
+
+    #[test]
+    fn built_in_rules_parse_and_extra_rules_report_errors() {
+        assert!(rules().len() >= 10);
+        assert!(extra_rules(&[("(+ ?a".into(), "?a".into())]).is_err());
+        assert_eq!(
+            extra_rules(&[("(+ ?a ?b)".into(), "(+ ?b ?a)".into())])
+                .unwrap()
+                .len(),
+            1
+        );
+    }
+}
