@@ -270,9 +270,17 @@ impl<'a> Coder<'a> {
             },
             Node::Add(a, b) => {
                 ops.add += 1;
-                let (x, _) = self.expr(*a, names, ops);
-                let (y, _) = self.expr(*b, names, ops);
-                (format!("{x} + {y}"), 1)
+                let (x, px) = self.expr(*a, names, ops);
+                let (y, py) = self.expr(*b, names, ops);
+                // Keep the graph's evaluation order exactly (so every function computing
+                // a node gets the same bits): `x + (u + v)` is written `u + v + x`
+                // (addition commutes exactly in IEEE arithmetic), or with parentheses.
+                let s = match (px <= 1, py <= 1) {
+                    (_, false) => format!("{x} + {y}"),
+                    (false, true) => format!("{y} + {x}"),
+                    (true, true) => format!("{x} + ({y})"),
+                };
+                (s, 1)
             }
             Node::Sub(a, b) => {
                 ops.add += 1;
