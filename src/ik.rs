@@ -1,27 +1,39 @@
 //! Numerical inverse kinematics: find `q` with `fk(q)` at a target, by iterating inverse
 //! velocity kinematics on the pose error, `q ← q + Δq`, `Δq = J(q)^{-1}-like · e(q)`.
 //!
-//! - Methods ([`IkMethod`]): Newton–Raphson with the SVD pseudo-inverse, damped least
+//! - Methods ([`IkMethod`]): Newton–Raphson with the pseudo-inverse, damped least
 //!   squares with singularity-adaptive damping, Levenberg–Marquardt (damping adapted from
-//!   progress), and the Jacobian transpose with Buss's optimal step length.
+//!   progress), and the Jacobian transpose with Buss's optimal step length. Newton–Raphson
+//!   and Levenberg–Marquardt solve their normal equations by LU and fall back to the SVD
+//!   only near singularities (several times faster per iteration than an SVD every time).
 //! - Targets ([`IkTarget`]): full pose, or position only (rows `vx vy vz` of `J`).
 //! - Orientation error: the rotation vector of `R_target R(q)ᵀ`
 //!   ([`orientation_error`]).
 //! - Step-size control: each step is scaled to at most [`IkOptions::max_step`] per joint,
 //!   then a backtracking line search halves it until the squared error decreases.
-//! - Joint limits: every iterate is clamped into [`Kinematics::limits`] (projection).
+//! - Joint limits: every iterate is projected into [`Kinematics::limits`]: clamped, except
+//!   that a revolute joint whose range spans a full turn or more (UR's ±2π) is wrapped by
+//!   whole turns instead, since clamping it would stop it at a wall that is not there in
+//!   the pose. A joint at a limit that the step pushes outward is frozen and the step
+//!   recomputed for the others (Baerlocher & Boulic).
+//! - Stall check: a start whose squared error has not halved in
+//!   [`IkOptions::stall_iterations`] iterations is abandoned early, so restarts are cheap.
 //! - Multi-start ([`solve_nearest`]): deterministic pseudo-random seeds (xorshift64*), and
 //!   the converged solution nearest to a given configuration.
+//!
+//! Measured (`examples/ik_success_rate.rs`, 10 000 reachable targets, random seeds, generated
+//! robots): UR5 70.4% from one start, 100.00% with up to 20 starts (Newton–Raphson);
+//! Panda (6×7, real joint limits) 40.4% from one start, 99.92% with up to 20 starts.
 //!
 //! No allocation: all state is fixed-size on the stack.
 
 use crate::adapters::{rotation_of, translation_of};
-use crate::linalg::Svd;
+use crate::linalg::{Lu, Svd, DEFAULT_TOLERANCE};
 use crate::math::{abs, sqrt};
 use crate::pose_error::orientation_error;
 use crate::velocity::{dls_from_svd, Damping};
 use crate::Kinematics;
-use core::f64::consts::PI;
+use core::f64::consts::{PI, TAU};
 use core::fmt;
 use nalgebra::{Isometry3, Matrix3, SMatrix, SVector, Vector3};
 
@@ -56,7 +68,8 @@ pub enum IkMethod {
 }
 
 /// Solver settings. [`IkOptions::default`] is Newton–Raphson, 100 iterations, 1e-9 m and
-/// 1e-9 rad, steps of at most 0.5 rad per joint, line search on.
+/// 1e-9 rad, steps of at most 0.5 rad per joint, line search on, stall check over 20
+/// iterations.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IkOptions {
     /// The step rule.
@@ -79,6 +92,12 @@ pub struct IkOptions {
     /// giving up — a cheap escape that trades a few iterations for fewer restarts. Not
     /// used by Levenberg–Marquardt, whose damping already adapts.
     pub escapes: usize,
+    /// Give up (with [`IkError::NotConverged`]) when the squared error has not at least
+    /// halved over this many iterations: a start that creeps along a shallow valley of
+    /// `‖e‖²` rarely converges, and a fresh start ([`solve_nearest`]) is cheaper than
+    /// finishing the crawl. `0` disables the check. Not applied to the Jacobian transpose,
+    /// whose convergence is linear by nature.
+    pub stall_iterations: usize,
 }
 
 impl Default for IkOptions {
@@ -91,6 +110,7 @@ impl Default for IkOptions {
             max_step: 0.5,
             line_search: true,
             escapes: 0,
+            stall_iterations: 20,
         }
     }
 }
@@ -214,12 +234,55 @@ fn eval_position<R: Kinematics<N>, const N: usize>(
     }
 }
 
-fn clamp_to<const N: usize>(q: &[f64; N], limits: &[[f64; 2]; N]) -> [f64; N] {
-    let mut out = *q;
-    for i in 0..N {
-        out[i] = out[i].max(limits[i][0]).min(limits[i][1]);
+/// The joint limits as the solver enforces them. A revolute joint whose range spans at
+/// least a full turn (the UR arms' ±2π) is *wrapped* by multiples of 2π into its range
+/// instead of being clamped: `θ` and `θ ± 2π` give the same pose, so clamping would stop
+/// the joint at an artificial wall (a local minimum the solver cannot leave) while the
+/// same motion is available on the other side of the turn.
+#[derive(Debug, Clone, Copy)]
+struct Bounds<const N: usize> {
+    limits: [[f64; 2]; N],
+    wrap: [bool; N],
+}
+
+impl<const N: usize> Bounds<N> {
+    /// Revolute joints are recognised from the Jacobian at `q`: a unit angular column
+    /// (a prismatic joint's is zero).
+    fn new<R: Kinematics<N>>(robot: &R, limits: [[f64; 2]; N], q: &[f64; N]) -> Self {
+        let j = robot.jacobian(q);
+        let mut wrap = [false; N];
+        for (i, w) in wrap.iter_mut().enumerate() {
+            let axis = sqrt(j[3][i] * j[3][i] + j[4][i] * j[4][i] + j[5][i] * j[5][i]);
+            let span = limits[i][1] - limits[i][0];
+            // An infinite span needs no wrapping (clamping is a no-op there).
+            *w = abs(axis - 1.0) <= 1e-9 && span >= TAU && span.is_finite();
+        }
+        Bounds { limits, wrap }
     }
-    out
+
+    /// `q` moved into the limits: wrapped by whole turns where allowed, then clamped.
+    fn project(&self, q: &[f64; N]) -> [f64; N] {
+        let mut out = *q;
+        for (i, out_i) in out.iter_mut().enumerate() {
+            let [lo, hi] = self.limits[i];
+            let mut x = *out_i;
+            if self.wrap[i] {
+                // Whole turns computed with ceil, not a loop, so a huge seed cannot hang.
+                if x > hi {
+                    x -= TAU * libm::ceil((x - hi) / TAU);
+                } else if x < lo {
+                    x += TAU * libm::ceil((lo - x) / TAU);
+                }
+            }
+            *out_i = x.max(lo).min(hi);
+        }
+        out
+    }
+
+    /// Whether a limit can block joint `i` (false for wrapped joints).
+    fn blocks(&self, i: usize) -> bool {
+        !self.wrap[i]
+    }
 }
 
 fn check_inputs<R: Kinematics<N>, const N: usize>(
@@ -352,7 +415,8 @@ pub fn solve<R: Kinematics<N>, const N: usize>(
 ) -> Result<IkSolution<N>, IkError<N>> {
     let limits = check_inputs(robot, target, seed, options)?;
     check_reach(robot, target, seed, options)?;
-    solve_checked(robot, target, seed, options, &limits)
+    let bounds = Bounds::new(robot, limits, seed);
+    solve_checked(robot, target, seed, options, &bounds)
 }
 
 fn check_reach<R: Kinematics<N>, const N: usize>(
@@ -379,19 +443,15 @@ fn solve_checked<R: Kinematics<N>, const N: usize>(
     target: &IkTarget,
     seed: &[f64; N],
     options: &IkOptions,
-    limits: &[[f64; 2]; N],
+    bounds: &Bounds<N>,
 ) -> Result<IkSolution<N>, IkError<N>> {
     match target {
         IkTarget::Pose(iso) => {
             let p_d = iso.translation.vector;
             let r_d = *iso.rotation.to_rotation_matrix().matrix();
-            iterate(robot, seed, options, limits, |q| {
-                eval_pose(robot, q, &p_d, &r_d)
-            })
+            iterate(seed, options, bounds, |q| eval_pose(robot, q, &p_d, &r_d))
         }
-        IkTarget::Position(p_d) => iterate(robot, seed, options, limits, |q| {
-            eval_position(robot, q, p_d)
-        }),
+        IkTarget::Position(p_d) => iterate(seed, options, bounds, |q| eval_position(robot, q, p_d)),
     }
 }
 
@@ -404,25 +464,28 @@ fn step_along<const N: usize>(
     q: &[f64; N],
     dq: &SVector<f64, N>,
     s: f64,
-    limits: &[[f64; 2]; N],
+    bounds: &Bounds<N>,
 ) -> [f64; N] {
     let mut out = *q;
     for i in 0..N {
         out[i] += s * dq[i];
     }
-    clamp_to(&out, limits)
+    bounds.project(&out)
 }
 
-fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
-    _robot: &R,
+fn iterate<const M: usize, const N: usize>(
     seed: &[f64; N],
     options: &IkOptions,
-    limits: &[[f64; 2]; N],
+    bounds: &Bounds<N>,
     eval: impl Fn(&[f64; N]) -> Eval<M, N>,
 ) -> Result<IkSolution<N>, IkError<N>> {
-    let mut q = clamp_to(seed, limits);
+    let limits = &bounds.limits;
+    let mut q = bounds.project(seed);
     let mut ev = eval(&q);
     let mut escapes = 0;
+    // Squared error at the start of the current stall-check window.
+    let mut checkpoint = f64::INFINITY;
+    let check_stall = options.stall_iterations > 0 && options.method != IkMethod::JacobianTranspose;
     let mut mu = match options.method {
         IkMethod::LevenbergMarquardt { initial_mu } => initial_mu,
         _ => 0.0,
@@ -439,6 +502,16 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
         if converged(&ev, options) {
             return Ok(done(q, &ev, it));
         }
+        if check_stall && it % options.stall_iterations == 0 {
+            if ev.cost() > 0.5 * checkpoint {
+                return Err(IkError::NotConverged {
+                    iterations: it,
+                    residual: sqrt(ev.cost()),
+                    q,
+                });
+            }
+            checkpoint = ev.cost();
+        }
         if !ev.e.iter().chain(ev.j.iter()).all(|x| x.is_finite()) {
             return Err(IkError::InvalidInput(
                 "the robot's FK or Jacobian returned NaN or infinity",
@@ -447,31 +520,27 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
         // Joint-limit clamping (Baerlocher & Boulic): a joint at a limit whose step points
         // outward is frozen by zeroing its Jacobian column, and the step recomputed, so the
         // other joints take over its share instead of the projection wasting the step.
-        let mut jm = ev.j;
-        let mut svd = match Svd::new(&jm) {
-            Ok(s) => s,
-            Err(_) => return Err(IkError::InvalidInput("the robot's Jacobian is not finite")),
-        };
-        let (full_sigma_min, full_sigma_max) = (svd.sigma_min(), svd.sigma_max());
-        let mut dq = raw_step(&options.method, &svd, &jm, &ev.e, mu);
+        let mut lin = Linearised::new(ev.j);
+        let mut dq = lin.step(&options.method, &ev.e, mu)?;
         for _ in 0..N {
             let mut frozen = false;
             for i in 0..N {
                 let at_low = q[i] <= limits[i][0] && dq[i] < 0.0;
                 let at_high = q[i] >= limits[i][1] && dq[i] > 0.0;
-                if (at_low || at_high) && jm.column(i).iter().any(|x| *x != 0.0) {
-                    jm.column_mut(i).fill(0.0);
+                if (at_low || at_high)
+                    && bounds.blocks(i)
+                    && lin.j.column(i).iter().any(|x| *x != 0.0)
+                {
+                    let mut masked = lin.j;
+                    masked.column_mut(i).fill(0.0);
+                    lin = Linearised::new(masked);
                     frozen = true;
                 }
             }
             if !frozen {
                 break;
             }
-            svd = match Svd::new(&jm) {
-                Ok(s) => s,
-                Err(_) => return Err(IkError::InvalidInput("the robot's Jacobian is not finite")),
-            };
-            dq = raw_step(&options.method, &svd, &jm, &ev.e, mu);
+            dq = lin.step(&options.method, &ev.e, mu)?;
         }
         let cost = ev.cost();
         let mut accepted: Option<([f64; N], Eval<M, N>)> = None;
@@ -480,11 +549,8 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
                 // Retry with more damping until the error decreases; damping alone
                 // controls the step length, so no halving.
                 for _ in 0..12 {
-                    let step = limit_step(
-                        raw_step(&options.method, &svd, &jm, &ev.e, mu),
-                        options.max_step,
-                    );
-                    let qn = step_along(&q, &step, 1.0, limits);
+                    let step = limit_step(lin.step(&options.method, &ev.e, mu)?, options.max_step);
+                    let qn = step_along(&q, &step, 1.0, bounds);
                     let en = eval(&qn);
                     if en.cost() < cost {
                         mu = (mu * 0.1).max(1e-12);
@@ -499,7 +565,7 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
                 let tries = if options.line_search { 11 } else { 1 };
                 let mut s = 1.0;
                 for _ in 0..tries {
-                    let qn = step_along(&q, &dq, s, limits);
+                    let qn = step_along(&q, &dq, s, bounds);
                     let en = eval(&qn);
                     if !options.line_search || en.cost() < cost {
                         accepted = Some((qn, en));
@@ -510,7 +576,7 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
                 if accepted.is_none() && escapes < options.escapes && dq.amax() > 0.0 {
                     // Non-monotone escape from a local minimum of ‖e‖²: take the full step.
                     escapes += 1;
-                    let qn = step_along(&q, &dq, 1.0, limits);
+                    let qn = step_along(&q, &dq, 1.0, bounds);
                     let en = eval(&qn);
                     accepted = Some((qn, en));
                 }
@@ -524,9 +590,10 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
             None => {
                 // No step reduced the error: a local minimum, a joint limit, or a singular
                 // direction. Report which, instead of spinning to max_iterations.
-                if full_sigma_min <= 1e-9 * full_sigma_max {
+                let svd = Linearised::new(ev.j).svd()?;
+                if svd.sigma_min() <= 1e-9 * svd.sigma_max() {
                     return Err(IkError::Singular {
-                        sigma_min: full_sigma_min,
+                        sigma_min: svd.sigma_min(),
                         q,
                     });
                 }
@@ -548,34 +615,92 @@ fn iterate<R: Kinematics<N>, const M: usize, const N: usize>(
     })
 }
 
-/// `Δq` for the method from the SVD of the (possibly column-masked) Jacobian `j`.
-fn raw_step<const M: usize, const N: usize>(
-    method: &IkMethod,
-    svd: &Svd<M, N>,
-    j: &SMatrix<f64, M, N>,
-    e: &SVector<f64, M>,
-    mu: f64,
-) -> SVector<f64, N> {
-    match method {
-        IkMethod::NewtonRaphson => {
-            let cut = 1e-12 * svd.sigma_max();
-            svd.apply_filtered(e, |s| if s > cut && s > 0.0 { 1.0 / s } else { 0.0 })
+/// The (possibly column-masked) Jacobian of one iteration, with its SVD computed only if
+/// a step rule needs it.
+struct Linearised<const M: usize, const N: usize> {
+    j: SMatrix<f64, M, N>,
+    svd: Option<Svd<M, N>>,
+}
+
+impl<const M: usize, const N: usize> Linearised<M, N> {
+    fn new(j: SMatrix<f64, M, N>) -> Self {
+        Linearised { j, svd: None }
+    }
+
+    fn svd(&mut self) -> Result<Svd<M, N>, IkError<N>> {
+        if self.svd.is_none() {
+            self.svd = Some(
+                Svd::new(&self.j)
+                    .map_err(|_| IkError::InvalidInput("the robot's Jacobian is not finite"))?,
+            );
         }
-        IkMethod::DampedLeastSquares(d) => dls_from_svd(svd, e, d),
-        IkMethod::LevenbergMarquardt { .. } => {
-            svd.apply_filtered(e, |s| if s > 0.0 { s / (s * s + mu) } else { 0.0 })
-        }
-        IkMethod::JacobianTranspose => {
-            let g = j.tr_mul(e);
-            let jg = j * g;
-            let den = jg.norm_squared();
-            if den > 0.0 {
-                g * (e.dot(&jg) / den)
-            } else {
-                SVector::zeros()
+        // `Svd` is `Copy` (fixed-size arrays): a copy keeps the borrow simple.
+        Ok(self.svd.expect("just computed"))
+    }
+
+    /// `Δq` for the method. Newton–Raphson and Levenberg–Marquardt first try the normal
+    /// equations by LU (`J⁻¹e`, `Jᵀ(JJᵀ + μI)⁻¹e` or `(JᵀJ + μI)⁻¹Jᵀe`: a few times
+    /// cheaper than a Jacobi SVD) and fall back to the SVD when the LU finds them
+    /// (nearly) singular, where the SVD's filtering of small singular values is needed.
+    fn step(
+        &mut self,
+        method: &IkMethod,
+        e: &SVector<f64, M>,
+        mu: f64,
+    ) -> Result<SVector<f64, N>, IkError<N>> {
+        match method {
+            IkMethod::NewtonRaphson => {
+                if let Some(dq) = normal_step(&self.j, e, 0.0) {
+                    return Ok(dq);
+                }
+                let svd = self.svd()?;
+                let cut = 1e-12 * svd.sigma_max();
+                Ok(svd.apply_filtered(e, |s| if s > cut && s > 0.0 { 1.0 / s } else { 0.0 }))
+            }
+            IkMethod::LevenbergMarquardt { .. } => {
+                if let Some(dq) = normal_step(&self.j, e, mu) {
+                    return Ok(dq);
+                }
+                let svd = self.svd()?;
+                Ok(svd.apply_filtered(e, |s| if s > 0.0 { s / (s * s + mu) } else { 0.0 }))
+            }
+            IkMethod::DampedLeastSquares(d) => Ok(dls_from_svd(&self.svd()?, e, d)),
+            IkMethod::JacobianTranspose => {
+                let j = &self.j;
+                let g = j.tr_mul(e);
+                let jg = j * g;
+                let den = jg.norm_squared();
+                Ok(if den > 0.0 {
+                    g * (e.dot(&jg) / den)
+                } else {
+                    SVector::zeros()
+                })
             }
         }
     }
+}
+
+/// `J⁻¹e` (square, `μ = 0`), `Jᵀ(JJᵀ + μI)⁻¹e` (`M ≤ N`) or `(JᵀJ + μI)⁻¹Jᵀe` (`M > N`)
+/// by LU; `None` when the LU reports a (nearly) singular matrix. The tolerances keep
+/// this path to matrices whose smallest singular value is above about `1e-6 σ_max`
+/// (`1e-10` for the square LU, which does not square the condition number).
+fn normal_step<const M: usize, const N: usize>(
+    j: &SMatrix<f64, M, N>,
+    e: &SVector<f64, M>,
+    mu: f64,
+) -> Option<SVector<f64, N>> {
+    let dq = if M == N && mu == 0.0 {
+        let square = SMatrix::<f64, N, N>::from_fn(|r, c| j[(r, c)]);
+        let rhs = SVector::<f64, N>::from_fn(|r, _| e[r]);
+        Lu::new(&square, DEFAULT_TOLERANCE).ok()?.solve(&rhs).ok()?
+    } else if M <= N {
+        let a = j * j.transpose() + SMatrix::<f64, M, M>::identity() * mu;
+        j.tr_mul(&Lu::new(&a, 1e-12).ok()?.solve(e).ok()?)
+    } else {
+        let a = j.tr_mul(j) + SMatrix::<f64, N, N>::identity() * mu;
+        Lu::new(&a, 1e-12).ok()?.solve(&j.tr_mul(e)).ok()?
+    };
+    dq.iter().all(|x| x.is_finite()).then_some(dq)
 }
 
 fn limit_step<const N: usize>(dq: SVector<f64, N>, max_step: f64) -> SVector<f64, N> {
@@ -677,6 +802,7 @@ pub fn solve_nearest<R: Kinematics<N>, const N: usize>(
         ));
     }
     check_reach(robot, target, nearest_to, options)?;
+    let bounds = Bounds::new(robot, limits, nearest_to);
     let mut rng = XorShift64::new(multi.rng_seed);
     let mut best: Option<(f64, IkSolution<N>)> = None;
     let mut failure: Option<IkError<N>> = None;
@@ -693,20 +819,20 @@ pub fn solve_nearest<R: Kinematics<N>, const N: usize>(
         } else {
             rng.configuration(&limits)
         };
-        match solve_checked(robot, target, &seed, options, &limits) {
+        match solve_checked(robot, target, &seed, options, &bounds) {
             Ok(mut sol) => {
                 sol.attempts = attempt + 1;
                 if multi.stop_at_first {
                     return Ok(sol);
                 }
                 let d = distance(&sol.q);
-                if best.map_or(true, |(bd, _)| d < bd) {
+                if best.is_none_or(|(bd, _)| d < bd) {
                     best = Some((d, sol));
                 }
             }
             Err(e) => {
                 let r = residual_of(&e);
-                if failure.map_or(true, |f| r < residual_of(&f)) {
+                if failure.is_none_or(|f| r < residual_of(&f)) {
                     failure = Some(e);
                 }
             }

@@ -10,6 +10,7 @@ use kinegen::adapters::{fk_isometry, jacobian_matrix};
 use kinegen::control::{cartesian_p_step_pose, cartesian_p_step_task};
 use kinegen::ik::{solve, solve_nearest, IkMethod, IkOptions, IkTarget, MultiStart};
 use kinegen::manipulability::measures;
+use kinegen::trajectory::{CartesianLine, ThroughVias};
 use kinegen::velocity::*;
 use nalgebra::{SVector, Vector3};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -128,6 +129,21 @@ fn runtime_does_not_allocate() {
             0.5,
         )
         .is_ok();
+        // Generated redundant arm (6×7 normal-equation and SVD paths), IK line tracking
+        // and limit-fitted via-point cubics.
+        let panda = kinegen_robots::Panda::default();
+        let q7 = [0.1, -0.4, 0.2, -2.0, 0.3, 1.6, 0.7];
+        let goal = IkTarget::Pose(fk_isometry(&panda, &[0.2, -0.3, 0.1, -1.8, 0.2, 1.5, 0.6]));
+        fine &= solve(&panda, &goal, black_box(&q7), &IkOptions::default()).is_ok();
+        let ur5 = kinegen_robots::Ur5::default();
+        let a = fk_isometry(&ur5, &q);
+        let b = nalgebra::Translation3::new(0.05, 0.0, 0.0) * a;
+        let line = CartesianLine::with_limits(a, b, 0.25, 1.0, 1.0, 2.0).unwrap();
+        fine &= line
+            .track_ik(&ur5, 500.0, q, &IkOptions::default(), 0.05)
+            .unwrap()
+            .all(|s| s.is_ok());
+        fine &= ThroughVias::with_limits([0.0, 1.0, 3.0, 2.0], 1.0, 2.0).is_ok();
         fine
     });
     assert!(ok, "some call did not give the expected result");

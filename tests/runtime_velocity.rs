@@ -414,3 +414,194 @@ fn euler_representation_singularity_is_an_error() {
         (euler_rate_matrix(&phi, EulerConvention::Zyz).determinant() + 0.3f64.sin()).abs() < 1e-15
     );
 }
+
+// ---------------------------------------------------------------------------------------
+// Exact singular configurations of the *generated* robots (kinegen-robots): the closed
+// forms must make the inverse refuse, the damped/SVD inverses stay bounded, and IK stay
+// finite, whatever the seed.
+
+use kinegen::adapters::fk_isometry;
+use kinegen::ik::{solve, IkError, IkMethod, IkOptions, IkTarget, XorShift64};
+use kinegen::TaskKinematics;
+use kinegen_robots::{PlanarRr, PlanarRrr, Ur5};
+
+/// The three UR5 singular families of `det J = a2 a3 s3 s5 (a2 c2 + a3 c23 + d5 s234)`,
+/// built from random configurations: elbow `q3 = 0` (and `π`), wrist `q5 = 0`, shoulder.
+fn ur5_singular_configurations(count: usize) -> Vec<(&'static str, [f64; 6])> {
+    let mut rng = XorShift64::new(31);
+    let mut out = Vec::new();
+    while out.len() < 3 * count {
+        let q = rng.configuration(&[[-PI, PI]; 6]);
+        let k = out.len() % 3;
+        match k {
+            0 => {
+                let mut e = q;
+                e[2] = if out.len() % 2 == 0 { 0.0 } else { PI };
+                out.push(("elbow q3 = 0/π", e));
+            }
+            1 => {
+                let mut w = q;
+                w[4] = 0.0;
+                out.push(("wrist q5 = 0", w));
+            }
+            _ => {
+                if let Some(s) = ur5_shoulder_singular(q) {
+                    out.push(("shoulder", s));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Every IK method from every seed: a solution or a clean error, never NaN/∞.
+fn ik_stays_finite<R: Kinematics<N>, const N: usize>(
+    robot: &R,
+    target: &IkTarget,
+    seeds: &[[f64; N]],
+) -> usize {
+    let mut solved = 0;
+    for method in [
+        IkMethod::NewtonRaphson,
+        IkMethod::DampedLeastSquares(Damping::default()),
+        IkMethod::LevenbergMarquardt { initial_mu: 1e-2 },
+        IkMethod::JacobianTranspose,
+    ] {
+        let opts = IkOptions {
+            method,
+            ..IkOptions::default()
+        };
+        for seed in seeds {
+            match solve(robot, target, seed, &opts) {
+                Ok(sol) => {
+                    assert!(
+                        sol.q.iter().all(|x| x.is_finite()),
+                        "{method:?}: {:?}",
+                        sol.q
+                    );
+                    assert!(sol.residual.is_finite());
+                    solved += 1;
+                }
+                Err(IkError::NotConverged { residual, q, .. }) => {
+                    assert!(
+                        residual.is_finite() && q.iter().all(|x| x.is_finite()),
+                        "{method:?}"
+                    )
+                }
+                Err(IkError::Singular { sigma_min, q }) => {
+                    assert!(sigma_min.is_finite() && q.iter().all(|x| x.is_finite()))
+                }
+                Err(IkError::OutOfReach { distance, reach }) => {
+                    assert!(distance.is_finite() && reach.is_finite())
+                }
+                Err(e @ IkError::InvalidInput(_)) => panic!("{method:?}: {e}"),
+            }
+        }
+    }
+    solved
+}
+
+#[test]
+fn generated_ur5_at_exact_singularities() {
+    let ur5 = Ur5::default();
+    let damping = Damping::default();
+    let xdot = SVector::<f64, 6>::new(0.3, -0.2, 0.1, 0.5, -0.4, 0.2);
+    let mut seed_rng = XorShift64::new(8);
+    let (mut ik_runs, mut ik_solved) = (0, 0);
+    for (family, q) in ur5_singular_configurations(12) {
+        // The generated closed-form determinant vanishes there (to rounding for the
+        // shoulder, whose q2 is a bisection root).
+        let det = ur5.jacobian_det(&q);
+        assert!(det.abs() < 1e-12, "{family}: det {det:e} at {q:?}");
+        let j = jacobian_matrix(&ur5, &q);
+        let sv = reference_singular_values(&j);
+        assert!(sv[5] < 1e-9 * sv[0], "{family}: not singular {sv:?}");
+        // The plain inverse refuses ...
+        assert!(
+            matches!(
+                inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE),
+                Err(SolveError::Singular { .. })
+            ),
+            "{family}"
+        );
+        assert!(matches!(
+            joint_velocities(&ur5, &q, &xdot, DEFAULT_TOLERANCE),
+            Err(SolveError::Singular { .. })
+        ));
+        assert!(jacobian_inverse(&j, DEFAULT_TOLERANCE).is_err());
+        // ... DLS is finite and bounded by ‖ẋ‖/(2λ) (λ = λ_max at σ = 0) ...
+        let qd = joint_velocities_dls(&ur5, &q, &xdot, &damping).unwrap();
+        let lambda = damping.lambda_squared(sv[5]).sqrt();
+        assert!(qd.iter().all(|x| x.is_finite()));
+        assert!(
+            qd.norm() <= xdot.norm() / (2.0 * lambda).min(damping.epsilon) * (1.0 + 1e-9),
+            "{family}: ‖q̇‖ = {}",
+            qd.norm()
+        );
+        // ... and the SVD pseudo-inverse satisfies the Penrose identities, with rank 5.
+        let p = pinv_svd(&j, 1e-9).unwrap();
+        penrose(&j, &p, 1e-8);
+        assert_eq!(Svd::new(&j).unwrap().rank(1e-9), 5, "{family}");
+        let v = pinv_velocity(&j, &xdot, 1e-9).unwrap();
+        assert!(v.iter().all(|x| x.is_finite()) && v.norm() <= 1e9 * xdot.norm());
+        // IK to the singular pose, seeded at the singularity itself and at random.
+        let target = IkTarget::Pose(fk_isometry(&ur5, &q));
+        let seeds = [q, seed_rng.configuration(&ur5.limits())];
+        ik_solved += ik_stays_finite(&ur5, &target, &seeds);
+        ik_runs += 4 * seeds.len();
+    }
+    println!(
+        "UR5 at exact singularities: IK solved {ik_solved}/{ik_runs} (methods × seeds), no NaN"
+    );
+}
+
+#[test]
+fn generated_planar_arms_at_exact_singularities() {
+    let (rr, rrr) = (PlanarRr::default(), PlanarRrr::default());
+    let damping = Damping::default();
+    for q1 in [-2.5, -0.3, 0.0, 1.1, 3.0] {
+        for q2 in [0.0, PI, -PI] {
+            // RR (L1 = L2 = 1): det = L1 L2 sin q2 = 0, stretched out or folded back.
+            let q = [q1, q2];
+            let j = task_jacobian_matrix(&rr, &q);
+            assert!(rr.task_jacobian_det(&q).unwrap().abs() < 1e-15);
+            let xdot = SVector::<f64, 2>::new(0.4, -0.9);
+            assert!(matches!(
+                inverse_velocity(&j, &xdot, DEFAULT_TOLERANCE),
+                Err(SolveError::Singular { .. })
+            ));
+            let qd = dls_velocity(&j, &xdot, &damping).unwrap();
+            assert!(qd.iter().all(|x| x.is_finite()));
+            assert!(qd.norm() <= xdot.norm() / (2.0 * damping.lambda_max) * (1.0 + 1e-9));
+            penrose(&j, &pinv_svd(&j, 1e-9).unwrap(), 1e-9);
+            assert!(pinv_left(&j, 1e-12).is_err() && pinv_right(&j, 1e-12).is_err());
+            // RRR (a = 3.5, 3.5, 2), task [x, y, θ]: det = a1 a2 sin q2 = 0 for any q3.
+            let q3 = [q1, q2, 0.7 - q1];
+            let j3 = task_jacobian_matrix(&rrr, &q3);
+            assert!(rrr.task_jacobian_det(&q3).unwrap().abs() < 1e-12);
+            let x3 = SVector::<f64, 3>::new(1.0, 0.5, -0.2);
+            assert!(matches!(
+                inverse_velocity(&j3, &x3, DEFAULT_TOLERANCE),
+                Err(SolveError::Singular { .. })
+            ));
+            let qd3 = dls_velocity(&j3, &x3, &damping).unwrap();
+            assert!(qd3.iter().all(|x| x.is_finite()));
+            assert!(qd3.norm() <= x3.norm() / (2.0 * damping.lambda_max) * (1.0 + 1e-9));
+            penrose(&j3, &pinv_svd(&j3, 1e-9).unwrap(), 1e-9);
+            // IK: to the singular point itself, and straight out along the stretched arm
+            // (a direction the arm cannot move in there), from the singular seed.
+            let p = fk_isometry(&rr, &q).translation.vector;
+            ik_stays_finite(&rr, &IkTarget::Position(p), &[q, [0.3, 0.4]]);
+            let out = IkTarget::Position(p * 1.0001);
+            ik_stays_finite(&rr, &out, &[q]);
+            let pose = fk_isometry(&rrr, &q3);
+            ik_stays_finite(&rrr, &IkTarget::Pose(pose), &[q3, [0.2, -0.5, 0.1]]);
+        }
+    }
+    // Beyond full stretch: refused as out of reach, before any iteration.
+    let far = IkTarget::Position(Vector3::new(2.5, 0.0, 0.0));
+    assert!(matches!(
+        solve(&rr, &far, &[0.0, 0.0], &IkOptions::default()),
+        Err(IkError::OutOfReach { .. })
+    ));
+}

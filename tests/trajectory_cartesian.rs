@@ -180,3 +180,148 @@ fn bad_lines_are_errors() {
     assert!((spin.duration() - (1.0 / 0.5 + 0.5 / 2.0)).abs() < 1e-12);
     assert!(spin.profile().duration() > 0.0);
 }
+
+/// A straight line on the generated UR5, sampled at 500 Hz and tracked by the runtime's
+/// IK seeded with the previous sample's solution: the tool stays on the line (position
+/// and orientation at the sampled targets), joints move in small steps, and the arm
+/// keeps its branch (the signs of the determinant's factors `sin q3`, `sin q5` and the
+/// shoulder factor do not change).
+#[test]
+fn ur5_tracks_a_straight_line_with_ik_at_500_hz() {
+    use kinegen::adapters::{fk_isometry, translation_of};
+    use kinegen::ik::IkOptions;
+    use kinegen_robots::Ur5;
+
+    let ur5 = Ur5::default();
+    let q0 = [0.3, -1.2, 1.4, -0.3, 1.1, 0.2];
+    let a = fk_isometry(&ur5, &q0);
+    // 0.25 m along a skew direction while turning 0.5 rad about a skew axis.
+    let turn = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -0.2, 0.3).normalize() * 0.5);
+    let b = Isometry3::from_parts(
+        Translation3::from(a.translation.vector + Vector3::new(0.15, -0.1, 0.17)),
+        turn * a.rotation,
+    );
+    let line = CartesianLine::with_limits(a, b, 0.25, 1.0, 1.0, 2.0).unwrap();
+    let rate = 500.0;
+    // 3 rad/s per joint at most: 6 mrad per 2 ms sample.
+    let max_joint_step = 3.0 / rate;
+    let (p0, d) = (
+        a.translation.vector,
+        b.translation.vector - a.translation.vector,
+    );
+    let mut prev = q0;
+    let signs = |q: &[f64; 6]| ur5.singular_factors(q).map(|f| f.signum());
+    let start_signs = signs(&q0);
+    let (mut n, mut max_pos, mut max_line, mut max_ang, mut max_step) =
+        (0, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut max_iterations = 0;
+    for step in line
+        .track_ik(&ur5, rate, q0, &IkOptions::default(), max_joint_step)
+        .unwrap()
+    {
+        let (t, sol) = step.unwrap_or_else(|e| panic!("{e}"));
+        let target = line.pose(t);
+        let pose = ur5.fk(&sol.q);
+        let p = translation_of(&pose);
+        max_pos = max_pos.max((p - target.translation.vector).norm());
+        // Distance from the straight segment itself.
+        let s = ((p - p0).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+        max_line = max_line.max((p - (p0 + d * s)).norm());
+        max_ang = max_ang.max(
+            fk_isometry(&ur5, &sol.q)
+                .rotation
+                .angle_to(&target.rotation),
+        );
+        for (a, b) in sol.q.iter().zip(prev.iter()) {
+            max_step = max_step.max((a - b).abs());
+        }
+        assert_eq!(signs(&sol.q), start_signs, "branch changed at t = {t}");
+        max_iterations = max_iterations.max(sol.iterations);
+        prev = sol.q;
+        n += 1;
+    }
+    assert_eq!(n, line.sample(rate).unwrap().count());
+    println!(
+        "UR5 line {:.3} m, {:.2} rad in {:.3} s at {rate} Hz: {n} IK solves (≤ {max_iterations} iterations each); \
+         max position error {max_pos:.1e} m (distance from the line {max_line:.1e} m), max orientation error {max_ang:.1e} rad, \
+         max joint step {max_step:.2e} rad",
+        line.length(),
+        line.angle(),
+        line.duration()
+    );
+    assert!(max_pos <= 1e-9 && max_line <= 1e-9 && max_ang <= 2e-9);
+    assert!(max_step <= max_joint_step);
+    // The end pose is reached.
+    let end = fk_isometry(&ur5, &prev);
+    assert!((end.translation.vector - b.translation.vector).norm() <= 1e-9);
+}
+
+/// Tracking stops with a clear error, never NaN: a line leaving the workspace ends in
+/// `IkTrackError::Ik` (out of reach), and a joint-step bound too tight for the motion in
+/// `IkTrackError::Jump`.
+#[test]
+fn ik_tracking_reports_why_it_stopped() {
+    use kinegen::adapters::fk_isometry;
+    use kinegen::ik::{IkError, IkOptions};
+    use kinegen::trajectory::IkTrackError;
+    use kinegen_robots::Ur5;
+
+    let ur5 = Ur5::default();
+    let q0 = [0.3, -1.2, 1.4, -0.3, 1.1, 0.2];
+    let a = fk_isometry(&ur5, &q0);
+    let far = Translation3::new(2.0, 0.0, 0.0) * a;
+    let line = CartesianLine::with_limits(a, far, 1.0, 4.0, 1.0, 2.0).unwrap();
+    let steps: Vec<_> = line
+        .track_ik(&ur5, 100.0, q0, &IkOptions::default(), f64::INFINITY)
+        .unwrap()
+        .collect();
+    let (last, before) = steps.split_last().unwrap();
+    assert!(
+        before.iter().all(|s| s.is_ok()),
+        "only the last sample fails"
+    );
+    match last {
+        Err(IkTrackError::Ik { t, error }) => {
+            assert!(*t > 0.0 && *t < line.duration());
+            assert!(
+                matches!(
+                    error,
+                    IkError::OutOfReach { .. }
+                        | IkError::NotConverged { .. }
+                        | IkError::Singular { .. }
+                ),
+                "{error:?}"
+            );
+            println!(
+                "line out of the workspace stops at t = {t:.3} s: {}",
+                last.unwrap_err()
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    for s in before {
+        let (_, sol) = s.as_ref().unwrap();
+        assert!(sol.q.iter().all(|x| x.is_finite()));
+    }
+    // 1 µrad per sample is far less than this motion needs.
+    let near = Translation3::new(0.1, 0.0, 0.0) * a;
+    let line = CartesianLine::with_limits(a, near, 0.25, 1.0, 1.0, 2.0).unwrap();
+    let mut it = line
+        .track_ik(&ur5, 500.0, q0, &IkOptions::default(), 1e-6)
+        .unwrap();
+    assert!(
+        it.next().unwrap().is_ok(),
+        "the first sample is the start pose"
+    );
+    assert!(matches!(it.next().unwrap(), Err(IkTrackError::Jump { .. })));
+    assert!(it.next().is_none());
+    // Bad arguments.
+    assert!(matches!(
+        line.track_ik(&ur5, 500.0, q0, &IkOptions::default(), 0.0),
+        Err(TrajectoryError::InvalidLimit { .. })
+    ));
+    assert!(matches!(
+        line.track_ik(&ur5, 500.0, [f64::NAN; 6], &IkOptions::default(), 1.0),
+        Err(TrajectoryError::NotFinite { .. })
+    ));
+}

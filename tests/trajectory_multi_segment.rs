@@ -116,6 +116,103 @@ proptest! {
     }
 }
 
+/// Largest |q̇| and |q̈| over a dense sampling of the whole path.
+fn sampled_peaks<P: Profile>(path: &P) -> (f64, f64) {
+    let (mut v, mut a) = (0.0f64, 0.0f64);
+    for k in 0..=5_000 {
+        let t = path.duration() * k as f64 / 5_000.0;
+        v = v.max(path.velocity(t).abs());
+        a = a.max(path.acceleration(t).abs());
+    }
+    (v, a)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn through_vias_with_limits_respects_them(p in points(), v_max in 0.1..5.0_f64, a_max in 0.1..50.0_f64) {
+        prop_assume!(p.windows(2).all(|w| (w[1] - w[0]).abs() > 1e-6));
+        let path = ThroughVias::with_limits(p, v_max, a_max).unwrap();
+        let t = *path.arrival_times();
+        for i in 0..K {
+            prop_assert_eq!(path.position(t[i]), p[i]);
+        }
+        let ((pv, _), (pa, _)) = path.peaks();
+        let (sv, sa) = sampled_peaks(&path);
+        // The exact peaks bound the sampled ones, and both are within the limits ...
+        prop_assert!(sv <= pv * (1.0 + 1e-12) && sa <= pa * (1.0 + 1e-12));
+        prop_assert!(pv <= v_max && pa <= a_max, "{pv} > {v_max} or {pa} > {a_max}");
+        // ... and the tighter limit is reached: no slower than the scaling needs.
+        prop_assert!((pv / v_max).max(pa / a_max) >= 1.0 - 1e-9);
+        // Velocity stays continuous through the via points.
+        for &ti in &t[1..K - 1] {
+            prop_assert!((path.velocity(ti + 1e-9) - path.velocity(ti - 1e-9)).abs() <= 1e-6 * (1.0 + pa));
+        }
+    }
+
+    #[test]
+    fn through_vias_new_within_refuses_exactly_what_exceeds(p in points(), t in times(), v_max in 0.1..5.0_f64, a_max in 0.1..50.0_f64) {
+        let free = ThroughVias::new(p, t).unwrap();
+        let ((pv, _), (pa, _)) = free.peaks();
+        let (sv, sa) = sampled_peaks(&free);
+        prop_assert!(sv <= pv * (1.0 + 1e-12) + 1e-12 && sa <= pa * (1.0 + 1e-12) + 1e-12);
+        // Sampling gets within 0.1% of the exact peak (dense grid, smooth cubics).
+        prop_assert!(sv >= pv * (1.0 - 1e-3) - 1e-9, "{sv} vs {pv}");
+        match ThroughVias::new_within(p, t, v_max, a_max) {
+            Ok(path) => {
+                prop_assert_eq!(path, free);
+                prop_assert!(pv <= v_max && pa <= a_max);
+            }
+            Err(TrajectoryError::LimitExceeded { what, peak, limit, .. }) => {
+                prop_assert!(peak > limit);
+                prop_assert!(pv > v_max || pa > a_max);
+                prop_assert!(what == "velocity" || what == "acceleration");
+            }
+            Err(e) => prop_assert!(false, "unexpected {e:?}"),
+        }
+    }
+}
+
+#[test]
+fn through_vias_limit_errors() {
+    // 2 rad in 1 s: the cubic peaks at 1.5·2/1 = 3 rad/s.
+    let e = ThroughVias::new_within([0.0, 2.0], [0.0, 1.0], 2.0, 100.0).unwrap_err();
+    assert_eq!(
+        e,
+        TrajectoryError::LimitExceeded {
+            what: "velocity",
+            segment: 0,
+            peak: 3.0,
+            limit: 2.0
+        }
+    );
+    assert!(e.to_string().contains("above the limit"));
+    // ... and 6·2/1² = 12 rad/s² at the ends.
+    assert!(matches!(
+        ThroughVias::new_within([0.0, 2.0], [0.0, 1.0], 10.0, 11.0),
+        Err(TrajectoryError::LimitExceeded {
+            what: "acceleration",
+            ..
+        })
+    ));
+    // Single segment, velocity-bound: T = 1.5·Δ/v_max exactly.
+    let one = ThroughVias::with_limits([0.0, 2.0], 1.0, 100.0).unwrap();
+    assert!((one.duration() - 3.0).abs() < 1e-9);
+    assert!(matches!(
+        ThroughVias::with_limits([0.0, 1.0, 1.0], 1.0, 1.0),
+        Err(TrajectoryError::TimesNotIncreasing { index: 2 })
+    ));
+    assert!(matches!(
+        ThroughVias::with_limits([0.0, 1.0], 0.0, 1.0),
+        Err(TrajectoryError::InvalidLimit { .. })
+    ));
+    assert!(matches!(
+        ThroughVias::new_within([0.0, 1.0], [0.0, 1.0], 1.0, f64::NAN),
+        Err(TrajectoryError::InvalidLimit { .. })
+    ));
+}
+
 #[test]
 fn via_velocity_examples() {
     // Monotone: mean of slopes 1 and 2. Turning back: 0. Flat neighbour: 0.

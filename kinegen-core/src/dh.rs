@@ -279,6 +279,29 @@ impl std::error::Error for DhError {}
 /// Identifiers that cannot be parameter names.
 const RESERVED: &[&str] = &["pi", "PI", "q", "self", "Self", "crate", "super"];
 
+/// Rust keywords (strict and reserved, 2021 edition): not usable as field names.
+fn is_rust_keyword(s: &str) -> bool {
+    const KEYWORDS: &[&str] = &[
+        "as", "async", "await", "break", "const", "continue", "dyn", "else", "enum", "extern",
+        "false", "fn", "for", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut",
+        "pub", "ref", "return", "static", "struct", "trait", "true", "type", "unsafe", "use",
+        "where", "while", "abstract", "become", "box", "do", "final", "macro", "override", "priv",
+        "try", "typeof", "unsized", "virtual", "yield", "gen",
+    ];
+    KEYWORDS.contains(&s)
+}
+
+/// Names the generated code binds itself: `s1`, `c1`, `c23`, `s1_2`, `s_k1`, `t4`.
+fn is_generated_local(s: &str) -> bool {
+    let Some(rest) = s.strip_prefix(['s', 'c', 't']) else {
+        return false;
+    };
+    let rest = rest.strip_prefix("_k").unwrap_or(rest);
+    !rest.is_empty()
+        && rest.starts_with(|c: char| c.is_ascii_digit())
+        && rest.chars().all(|c| c.is_ascii_digit() || c == '_')
+}
+
 /// Whether `s` is an identifier usable as a parameter / struct field.
 pub fn is_identifier(s: &str) -> bool {
     let mut ch = s.chars();
@@ -399,6 +422,23 @@ impl Validator {
                     p.clone(),
                     format!(
                         "`{name}` is the name of a joint variable; choose another parameter name"
+                    ),
+                );
+                continue;
+            }
+            if is_rust_keyword(name) {
+                self.err(
+                    p.clone(),
+                    format!("`{name}` is a Rust keyword; choose another parameter name"),
+                );
+                continue;
+            }
+            if is_generated_local(name) {
+                self.err(
+                    p.clone(),
+                    format!(
+                        "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23` angle \
+                         sums, `t4` intermediates); choose another parameter name"
                     ),
                 );
                 continue;

@@ -5,6 +5,9 @@
 //! by one scalar profile `s(t)` from 0 to 1. Position and orientation therefore start,
 //! stop and pass every fraction of the way together.
 //!
+//! [`CartesianLine::track_ik`] follows the samples with the runtime's numerical IK, each
+//! solve seeded with the previous solution, and refuses joint jumps (branch changes).
+//!
 //! Euler angles are not interpolated: their components are coupled, so interpolating
 //! them one by one neither follows a shortest rotation nor keeps a constant axis.
 
@@ -13,7 +16,9 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use super::error::{self, TrajectoryError};
 use super::profile::{Profile, SampleTimes};
 use super::trapezoid::Trapezoid;
+use crate::ik::{self, IkError, IkOptions, IkSolution, IkTarget};
 use crate::math;
+use crate::Kinematics;
 
 /// How far `s(0)` and `s(T)` may be from 0 and 1 for a profile to count as normalised.
 const NORMALIZED_TOL: f64 = 1e-9;
@@ -163,6 +168,160 @@ impl<P: Profile> CartesianLine<P> {
         F: FnMut(&Isometry3<f64>, &[f64; N]) -> Result<[f64; N], E>,
     {
         Ok(track(self.sample(rate_hz)?, q_start, solve))
+    }
+
+    /// Follows the sampled line with the runtime's numerical IK ([`ik::solve`]): each
+    /// sample is solved from the previous sample's solution (`q_start` for the first),
+    /// so with samples a control period apart the solver starts next to the solution on
+    /// the robot's current branch and converges to it (its steps are at most
+    /// [`IkOptions::max_step`] per joint).
+    ///
+    /// Because a seed that close can still land on another branch near a singularity,
+    /// every solution is also checked against the previous one: a change of more than
+    /// `max_joint_step` in any joint (e.g. `v_joint_max / rate_hz`) stops the track with
+    /// [`IkTrackError::Jump`] rather than commanding the jump. Pass `f64::INFINITY` to
+    /// turn the check off.
+    ///
+    /// ```
+    /// use kinegen::adapters::fk_isometry;
+    /// use kinegen::ik::IkOptions;
+    /// use kinegen::trajectory::CartesianLine;
+    /// use kinegen_robots::Ur5;
+    /// use nalgebra::{Isometry3, Translation3};
+    /// let ur5 = Ur5::default();
+    /// let q0 = [0.3, -1.2, 1.4, -0.3, 1.1, 0.2];
+    /// let a = fk_isometry(&ur5, &q0);
+    /// let b = Translation3::new(0.1, 0.0, -0.05) * a;
+    /// let line = CartesianLine::with_limits(a, b, 0.25, 1.0, 1.0, 2.0)?;
+    /// let mut last = q0;
+    /// for step in line.track_ik(&ur5, 500.0, q0, &IkOptions::default(), 0.05)? {
+    ///     let (_t, sol) = step.expect("the UR5 follows this line");
+    ///     last = sol.q;
+    /// }
+    /// assert!((fk_isometry(&ur5, &last).translation.vector - b.translation.vector).norm() < 1e-9);
+    /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
+    /// ```
+    pub fn track_ik<'a, R: Kinematics<N>, const N: usize>(
+        &'a self,
+        robot: &'a R,
+        rate_hz: f64,
+        q_start: [f64; N],
+        options: &IkOptions,
+        max_joint_step: f64,
+    ) -> Result<IkTrack<'a, P, R, N>, TrajectoryError> {
+        if max_joint_step.is_nan() || max_joint_step <= 0.0 {
+            return Err(TrajectoryError::InvalidLimit {
+                what: "max_joint_step",
+                value: max_joint_step,
+            });
+        }
+        for q in &q_start {
+            error::finite(*q, "start configuration")?;
+        }
+        Ok(IkTrack {
+            samples: self.sample(rate_hz)?,
+            robot,
+            options: *options,
+            max_joint_step,
+            seed: q_start,
+            failed: false,
+        })
+    }
+}
+
+/// Why [`CartesianLine::track_ik`] stopped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IkTrackError<const N: usize> {
+    /// The IK solver found no solution for the sample at time `t`.
+    Ik {
+        /// Time of the sample.
+        t: f64,
+        /// The solver's reason.
+        error: IkError<N>,
+    },
+    /// The solution for the sample at `t` differs from the previous one by `step` in
+    /// joint `joint` (0-based), more than the allowed `max_joint_step`: a branch change
+    /// or a singularity on the line, where following it needs unbounded joint speed.
+    Jump {
+        /// Time of the sample.
+        t: f64,
+        /// Which joint (0-based).
+        joint: usize,
+        /// Its change from the previous sample.
+        step: f64,
+    },
+}
+
+impl<const N: usize> core::fmt::Display for IkTrackError<N> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Ik { t, error } => write!(f, "at t = {t} s: {error}"),
+            Self::Jump { t, joint, step } => write!(
+                f,
+                "at t = {t} s joint {} would jump by {step} (branch change or singularity)",
+                joint + 1
+            ),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl<const N: usize> std::error::Error for IkTrackError<N> {}
+
+/// Iterator returned by [`CartesianLine::track_ik`]: `Ok((t, solution))` per sample, or
+/// the first error, after which it stops.
+#[derive(Debug, Clone)]
+pub struct IkTrack<'a, P, R, const N: usize> {
+    samples: CartesianSamples<'a, P>,
+    robot: &'a R,
+    options: IkOptions,
+    max_joint_step: f64,
+    seed: [f64; N],
+    failed: bool,
+}
+
+impl<P: Profile, R: Kinematics<N>, const N: usize> Iterator for IkTrack<'_, P, R, N> {
+    type Item = Result<(f64, IkSolution<N>), IkTrackError<N>>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        let (t, target) = self.samples.next()?;
+        let result = ik::solve(
+            self.robot,
+            &IkTarget::Pose(target),
+            &self.seed,
+            &self.options,
+        )
+        .map_err(|error| IkTrackError::Ik { t, error })
+        .and_then(|sol| {
+            for (joint, (a, b)) in sol.q.iter().zip(self.seed.iter()).enumerate() {
+                let step = a - b;
+                if step.is_nan() || math::abs(step) > self.max_joint_step {
+                    return Err(IkTrackError::Jump { t, joint, step });
+                }
+            }
+            Ok(sol)
+        });
+        match result {
+            Ok(sol) => {
+                self.seed = sol.q;
+                Some(Ok((t, sol)))
+            }
+            Err(e) => {
+                self.failed = true;
+                Some(Err(e))
+            }
+        }
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        if self.failed {
+            (0, Some(0))
+        } else {
+            (0, self.samples.size_hint().1)
+        }
     }
 }
 

@@ -69,6 +69,17 @@ pub enum TrajectoryError {
         /// `s(T)`.
         end: f64,
     },
+    /// A profile through given times would exceed a velocity or acceleration limit.
+    LimitExceeded {
+        /// `"velocity"` or `"acceleration"`.
+        what: &'static str,
+        /// Segment (0-based) where the peak occurs.
+        segment: usize,
+        /// The profile's peak `|q̇|` or `|q̈|` there.
+        peak: f64,
+        /// The limit given.
+        limit: f64,
+    },
     /// The inputs were valid but the result overflowed (e.g. an enormous distance at a
     /// tiny velocity gives an infinite duration).
     Overflow,
@@ -120,6 +131,15 @@ impl fmt::Display for TrajectoryError {
             Self::NotNormalized { start, end } => write!(
                 f,
                 "the path parameter must go from 0 to 1, this profile goes from {start} to {end}"
+            ),
+            Self::LimitExceeded {
+                what,
+                segment,
+                peak,
+                limit,
+            } => write!(
+                f,
+                "segment {segment} reaches a peak {what} of {peak}, above the limit {limit}"
             ),
             Self::Overflow => write!(f, "the trajectory's numbers overflow f64"),
         }

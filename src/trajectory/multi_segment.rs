@@ -7,6 +7,13 @@
 //!   the motion flows through without stopping. Position and velocity are continuous at
 //!   the joins; acceleration is not (that would need a cubic spline, a global solve).
 //!
+//! Limits: [`StopAtVias`] is built from trapezoids within `v_max` and `a_max`.
+//! [`ThroughVias::new`] takes the times as given and does not look at limits;
+//! [`ThroughVias::new_within`] refuses times whose cubics exceed `v_max` or `a_max`
+//! ([`TrajectoryError::LimitExceeded`]), and [`ThroughVias::with_limits`] chooses the
+//! times itself: the fastest schedule, among uniform scalings of per-segment rest-to-rest
+//! times, whose peaks stay within both limits.
+//!
 //! The via velocities of [`ThroughVias::new`] follow the common heuristic (Craig,
 //! *Introduction to Robotics*, §7.3): with the segment slopes `mᵢ = (pᵢ − pᵢ₋₁)/(tᵢ − tᵢ₋₁)`,
 //! the velocity at via point `i` is `(mᵢ + mᵢ₊₁)/2` if both slopes have the same sign,
@@ -21,6 +28,7 @@ use super::error::{self, TrajectoryError};
 use super::polynomial::Cubic;
 use super::profile::{clamp_time, Profile};
 use super::trapezoid::{Stretch, Trapezoid};
+use crate::math;
 
 /// Checks `K ≥ 2`, finite points, and `times` starting at 0 and increasing strictly.
 fn check_path<const K: usize>(
@@ -215,6 +223,129 @@ impl<const K: usize> ThroughVias<K> {
         Self::with_velocities(points, times, heuristic_via_velocities(&points, &times))
     }
 
+    /// Like [`ThroughVias::new`], but `Err(LimitExceeded)` if any segment's cubic peaks
+    /// above `v_max` in `|q̇|` or `a_max` in `|q̈|`: the times are too short for the limits.
+    ///
+    /// ```
+    /// use kinegen::trajectory::{ThroughVias, TrajectoryError};
+    /// // 2 rad in the first second needs a peak speed of 3 rad/s (1.5 Δ/T).
+    /// let fast = ThroughVias::new_within([0.0, 2.0], [0.0, 1.0], 2.0, 100.0);
+    /// assert!(matches!(fast, Err(TrajectoryError::LimitExceeded { what: "velocity", .. })));
+    /// assert!(ThroughVias::new_within([0.0, 2.0], [0.0, 1.5], 2.0, 100.0).is_ok());
+    /// ```
+    pub fn new_within(
+        points: [f64; K],
+        times: [f64; K],
+        v_max: f64,
+        a_max: f64,
+    ) -> Result<Self, TrajectoryError> {
+        let v_max = error::limit(v_max, "v_max")?;
+        let a_max = error::limit(a_max, "a_max")?;
+        let path = Self::new(points, times)?;
+        path.check_limits(v_max, a_max)?;
+        Ok(path)
+    }
+
+    /// Through `points` as fast as `v_max` and `a_max` allow, within one family of
+    /// schedules: segment `i` first gets the rest-to-rest cubic time
+    /// `max(1.5|Δᵢ|/v_max, √(6|Δᵢ|/a_max))`, the heuristic via velocities are computed,
+    /// and then the whole schedule is scaled by one factor `k`.
+    ///
+    /// Scaling every time by `k` scales the heuristic via velocities, hence every
+    /// segment's velocity, by `1/k` and its acceleration by `1/k²` (the cubics keep their
+    /// shape in normalised time). So `k = max(peak_v/v_max, √(peak_a/a_max))` computed
+    /// once makes the tighter limit exactly binding and the other one satisfied. Not
+    /// time-optimal in general (that needs per-segment times), but never over a limit.
+    ///
+    /// `Err(TimesNotIncreasing)` if two consecutive points are equal (a zero-length
+    /// segment has no rest-to-rest time); limits must be finite and positive.
+    ///
+    /// ```
+    /// use kinegen::trajectory::{Profile, ThroughVias};
+    /// let path = ThroughVias::with_limits([0.0, 1.0, 3.0, 2.0], 1.0, 2.0)?;
+    /// let peak_v = (0..=1000)
+    ///     .map(|k| path.velocity(path.duration() * k as f64 / 1000.0).abs())
+    ///     .fold(0.0, f64::max);
+    /// assert!(peak_v <= 1.0 + 1e-9);
+    /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
+    /// ```
+    pub fn with_limits(points: [f64; K], v_max: f64, a_max: f64) -> Result<Self, TrajectoryError> {
+        let v_max = error::limit(v_max, "v_max")?;
+        let a_max = error::limit(a_max, "a_max")?;
+        check_path(&points, None)?;
+        let mut times = [0.0; K];
+        for i in 0..K - 1 {
+            let d = math::abs(points[i + 1] - points[i]);
+            if d == 0.0 {
+                return Err(TrajectoryError::TimesNotIncreasing { index: i + 1 });
+            }
+            let t = (1.5 * d / v_max).max(math::sqrt(6.0 * d / a_max));
+            times[i + 1] = error::finite(times[i] + t, "segment time")?;
+        }
+        let trial = Self::new(points, times)?;
+        let (peak_v, peak_a) = trial.peaks();
+        let k = (peak_v.0 / v_max).max(math::sqrt(peak_a.0 / a_max));
+        if !(k.is_finite() && k > 0.0) {
+            return Err(TrajectoryError::Overflow);
+        }
+        // Rounding in the cubics' coefficients can leave a peak some ulps above the
+        // limit after exact scaling: slow down by a relative 1e-12 (then 1e-11, …).
+        let mut nudge = 1e-12;
+        loop {
+            let mut scaled = times;
+            for t in scaled.iter_mut() {
+                *t = error::finite(*t * k * (1.0 + nudge), "segment time")?;
+            }
+            let path = Self::new(points, scaled)?;
+            match path.check_limits(v_max, a_max) {
+                Ok(()) => return Ok(path),
+                Err(e) if nudge >= 1e-9 => return Err(e),
+                Err(_) => nudge *= 10.0,
+            }
+        }
+    }
+
+    /// `Err(LimitExceeded)` naming the first segment whose peak `|q̇|` exceeds `v_max` or
+    /// peak `|q̈|` exceeds `a_max`.
+    pub fn check_limits(&self, v_max: f64, a_max: f64) -> Result<(), TrajectoryError> {
+        for i in 0..K - 1 {
+            let (v, a) = cubic_peaks(&self.segments[i]);
+            if v > v_max {
+                return Err(TrajectoryError::LimitExceeded {
+                    what: "velocity",
+                    segment: i,
+                    peak: v,
+                    limit: v_max,
+                });
+            }
+            if a > a_max {
+                return Err(TrajectoryError::LimitExceeded {
+                    what: "acceleration",
+                    segment: i,
+                    peak: a,
+                    limit: a_max,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Largest `|q̇|` and `|q̈|` over the whole path, each with its segment:
+    /// `((peak_v, segment), (peak_a, segment))`, exact (from the cubics' coefficients).
+    pub fn peaks(&self) -> ((f64, usize), (f64, usize)) {
+        let (mut v, mut a) = ((0.0, 0), (0.0, 0));
+        for i in 0..K - 1 {
+            let (pv, pa) = cubic_peaks(&self.segments[i]);
+            if pv > v.0 {
+                v = (pv, i);
+            }
+            if pa > a.0 {
+                a = (pa, i);
+            }
+        }
+        (v, a)
+    }
+
     /// Through `points` at `times` with the given velocity at every point (including
     /// the first and last).
     pub fn with_velocities(
@@ -286,6 +417,23 @@ impl<const K: usize> ThroughVias<K> {
         };
         (seg, local)
     }
+}
+
+/// Peak `|q̇|` and `|q̈|` of a cubic on `[0, T]`: `q̈` is linear, so its peak is at an end;
+/// `q̇` is quadratic, so its peak is at an end or at the vertex `t* = −c₂/(3c₃)`.
+fn cubic_peaks(c: &Cubic) -> (f64, f64) {
+    let [_, c1, c2, c3, _, _] = c.coefficients();
+    let t = c.duration();
+    let v = |t: f64| c1 + 2.0 * c2 * t + 3.0 * c3 * t * t;
+    let mut peak_v = math::abs(v(0.0)).max(math::abs(v(t)));
+    if c3 != 0.0 {
+        let vertex = -c2 / (3.0 * c3);
+        if vertex > 0.0 && vertex < t {
+            peak_v = peak_v.max(math::abs(v(vertex)));
+        }
+    }
+    let peak_a = math::abs(2.0 * c2).max(math::abs(2.0 * c2 + 6.0 * c3 * t));
+    (peak_v, peak_a)
 }
 
 /// The via velocities [`ThroughVias::new`] uses: 0 at both ends; at an inner point the

@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""Flash size of the generated UR5 functions in the firmware ELF.
+
+Builds the firmware (release profile of Cargo.toml: opt-level "s", LTO, one codegen unit;
+`--opt-level 3` overrides the level), then reads symbol sizes with `llvm-nm` and call
+targets with `llvm-objdump` (from `rustup component add llvm-tools`) and prints a
+Markdown table: each wrapper `ur5_<method>_<f64|f32>` (in src/main.rs, never inlined, so
+its size is the generated method's code), then the library routines each precision
+reaches through calls (libm's sin/cos, compiler-builtins' soft-float f64), counted once
+per precision.
+
+    python3 size.py [--opt-level s|z|1|2|3]
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+METHODS = ["fk", "jacobian", "jacobian_det"]
+
+
+def tool(name):
+    libdir = subprocess.run(["rustc", "--print", "target-libdir"], check=True,
+                            capture_output=True, text=True).stdout.strip()
+    path = Path(libdir).parent / "bin" / name
+    if not path.exists():
+        sys.exit(f"{path} not found: run `rustup component add llvm-tools`")
+    return str(path)
+
+
+def build(opt_level):
+    env = dict(os.environ)
+    env["CARGO_PROFILE_RELEASE_OPT_LEVEL"] = opt_level
+    subprocess.run(["cargo", "build", "--release", "--bin", "firmware"], cwd=HERE,
+                   env=env, check=True)
+    target_dir = env.get("CARGO_TARGET_DIR", str(HERE / "target"))
+    return Path(target_dir) / "thumbv7em-none-eabihf" / "release" / "firmware"
+
+
+def sizes(elf):
+    out = subprocess.run([tool("llvm-nm"), "--print-size", "--radix=d", elf], check=True,
+                         capture_output=True, text=True).stdout
+    s = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 4 and parts[2].lower() == "t":
+            s[parts[3]] = int(parts[1])
+    return s
+
+
+def calls(elf):
+    """Function → set of functions it calls or tail-calls."""
+    out = subprocess.run([tool("llvm-objdump"), "-d", "--no-show-raw-insn", elf],
+                         check=True, capture_output=True, text=True).stdout
+    graph, current = {}, None
+    head = re.compile(r"^[0-9a-f]+ <(.+)>:$")
+    call = re.compile(r"\s(?:bl|blx|b|b\.w)\s+0x[0-9a-f]+ <([^>+]+)>")
+    for line in out.splitlines():
+        m = head.match(line)
+        if m:
+            current = m.group(1)
+            graph.setdefault(current, set())
+            continue
+        m = call.search(line)
+        if m and current and m.group(1) != current:
+            graph[current].add(m.group(1))
+    return graph
+
+
+def reach(graph, roots):
+    seen, todo = set(), list(roots)
+    while todo:
+        f = todo.pop()
+        for g in graph.get(f, ()):
+            if g not in seen and g not in roots:
+                seen.add(g)
+                todo.append(g)
+    return seen
+
+
+def short(sym):
+    m = re.search(r"libm4math(\d+)", sym)
+    if m:  # legacy mangling: length-prefixed module name, then the function's
+        rest = sym[m.end():]
+        rest = rest[int(m.group(1)):]
+        n = re.match(r"\d+", rest).group(0)
+        return "libm::" + rest[len(n):len(n) + int(n)]
+    m = re.search(r"(__\w+?)$", sym)
+    return m.group(1) if m else sym
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--opt-level", default="s")
+    args = ap.parse_args()
+    elf = build(args.opt_level)
+    size, graph = sizes(elf), calls(elf)
+    print(f"\nUR5, thumbv7em-none-eabihf, release, opt-level \"{args.opt_level}\", LTO; bytes of .text\n")
+    print("| function | f64 (soft-float) | f32 (FPU) |")
+    print("|---|---:|---:|")
+    total = {"f64": 0, "f32": 0}
+    for m in METHODS:
+        row = []
+        for p in ("f64", "f32"):
+            n = size.get(f"ur5_{m}_{p}", 0)
+            total[p] += n
+            row.append(str(n))
+        print(f"| `{m}` | {row[0]} | {row[1]} |")
+    print(f"| **sum of the three** | **{total['f64']}** | **{total['f32']}** |")
+    helpers = {}
+    for p in ("f64", "f32"):
+        roots = {f"ur5_{m}_{p}" for m in METHODS}
+        helpers[p] = sorted(reach(graph, roots), key=lambda s: -size.get(s, 0))
+        n = sum(size.get(s, 0) for s in helpers[p])
+        print(f"| routines called (once per precision) | " if p == "f64" else "", end="")
+        helpers[p + "_n"] = n
+    print(f"{helpers['f64_n']} | {helpers['f32_n']} |")
+    print(f"| **total** | **{total['f64'] + helpers['f64_n']}** | **{total['f32'] + helpers['f32_n']}** |")
+    for p in ("f64", "f32"):
+        listed = ", ".join(f"{short(s)} {size.get(s, 0)}" for s in helpers[p])
+        print(f"\n{p} routines: {listed}")
+    print(f"\nwhole image: {subprocess.run([tool('llvm-size'), elf], capture_output=True, text=True).stdout.strip()}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,298 @@
+//! Host side: reads the firmware's output (stdin, or the file given as argument), computes
+//! the same quantities on the host and compares.
+//!
+//! - f64: the firmware's values (software floating point on the M4F) against the host's
+//!   `kinegen_robots::Ur5`: must agree to 1e-12 (they are expected to be bit-identical:
+//!   same generated code, same `libm`, IEEE arithmetic on both sides).
+//! - f32: the firmware's values (the M4F's FPU) against the host's f32 twin (1e-12: also
+//!   expected bit-identical) and
+//!   against the host's f64 at the same joint values, within the bounds measured on all
+//!   robots in `robots/tests/f32_error.rs`: 4 ε·reach for positions and linear Jacobian
+//!   rows, 4 ε for rotation entries and angular rows, 8 ε·0.12 m³ for the determinant
+//!   (0.12 m³ is the largest |det J| of the UR5 seen there), ε = f32::EPSILON.
+//!
+//! Exit status 0 when everything agrees, 1 otherwise (with the differences printed).
+
+use std::collections::HashMap;
+use std::io::Read;
+use std::process::ExitCode;
+
+use kinegen_firmware::{to_f32, Ur5F32, CONFIGS, HEADER, TRAILER};
+use kinegen_robots::Ur5;
+
+/// UR5's reach (m): |a2| + |a3| + d4 + d6 bounds the tool point's distance from the base.
+const REACH: f64 = 0.425 + 0.39225 + 0.10915 + 0.0823 + 0.089159 + 0.09465;
+/// Largest |det J| of the UR5 over 20 000 random configurations (robots/tests/f32_error.rs).
+const DET_SCALE: f64 = 0.12;
+
+/// One record: (scalar, case, quantity) → values.
+type Records = HashMap<(String, usize, String), Vec<f64>>;
+
+fn parse(text: &str) -> Result<Records, String> {
+    let mut lines = text.lines().map(str::trim_end).filter(|l| !l.is_empty());
+    match lines.next() {
+        Some(h) if h == HEADER => {}
+        other => return Err(format!("expected `{HEADER}` first, got {other:?}")),
+    }
+    let mut records = Records::new();
+    let mut ended = false;
+    for line in lines {
+        if line == TRAILER {
+            ended = true;
+            continue;
+        }
+        let fields: Vec<&str> = line.split(' ').collect();
+        match fields.as_slice() {
+            ["cpacr", v] => {
+                let bits = u32::from_str_radix(v.trim_start_matches("0x"), 16)
+                    .map_err(|e| format!("bad cpacr `{v}`: {e}"))?;
+                if bits & (0xF << 20) != 0xF << 20 {
+                    return Err(format!("FPU not enabled: CPACR = {bits:#010x}"));
+                }
+                println!("firmware: CPACR = {bits:#010x} (CP10/CP11 full access: FPU on)");
+            }
+            ["error", ..] => return Err(format!("firmware reported: {line}")),
+            [scalar, case, name, values @ ..] => {
+                let case: usize = case.parse().map_err(|e| format!("`{line}`: {e}"))?;
+                // f32 values are printed as the shortest text that reads back to the
+                // same f32: read them as f32, then widen exactly.
+                let read = |v: &str| match *scalar {
+                    "f64" => v.parse::<f64>().map_err(|e| e.to_string()),
+                    "f32" => v.parse::<f32>().map(f64::from).map_err(|e| e.to_string()),
+                    other => Err(format!("unknown scalar `{other}`")),
+                };
+                let values = values
+                    .iter()
+                    .map(|v| read(v).map_err(|e| format!("`{v}` in `{line}`: {e}")))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let key = (scalar.to_string(), case, name.to_string());
+                if records.insert(key, values).is_some() {
+                    return Err(format!("record given twice: `{line}`"));
+                }
+            }
+            _ => return Err(format!("cannot read line `{line}`")),
+        }
+    }
+    if !ended {
+        return Err(format!("no `{TRAILER}` line: the firmware stopped early"));
+    }
+    Ok(records)
+}
+
+/// Compares `got` with `want` entry by entry; returns the largest difference and whether
+/// every entry is bit-identical.
+struct Compare<'a> {
+    failures: &'a mut Vec<String>,
+    worst: HashMap<&'static str, f64>,
+    identical: usize,
+    total: usize,
+}
+
+impl Compare<'_> {
+    fn check(
+        &mut self,
+        what: &'static str,
+        case: usize,
+        got: Option<&Vec<f64>>,
+        want: &[f64],
+        bound: &dyn Fn(usize) -> f64,
+    ) {
+        let Some(got) = got else {
+            self.failures
+                .push(format!("case {case}: no `{what}` record"));
+            return;
+        };
+        if got.len() != want.len() {
+            self.failures.push(format!(
+                "case {case} {what}: {} values, expected {}",
+                got.len(),
+                want.len()
+            ));
+            return;
+        }
+        for (i, (g, w)) in got.iter().zip(want).enumerate() {
+            let diff = (g - w).abs();
+            self.total += 1;
+            if g.to_bits() == w.to_bits() || (*g == 0.0 && *w == 0.0) {
+                self.identical += 1;
+            }
+            let worst = self.worst.entry(what).or_insert(0.0);
+            *worst = worst.max(diff);
+            if diff.is_nan() || diff > bound(i) {
+                self.failures.push(format!(
+                    "case {case} {what}[{i}]: firmware {g:e}, host {w:e}, |diff| {diff:.3e} > {:.3e}",
+                    bound(i)
+                ));
+            }
+        }
+    }
+
+    fn report(&self, title: &str) {
+        let mut worst: Vec<_> = self.worst.iter().collect();
+        worst.sort_by(|a, b| a.0.cmp(b.0));
+        let list: Vec<String> = worst.iter().map(|(k, v)| format!("{k} {v:.2e}")).collect();
+        println!(
+            "{title}: {}/{} entries bit-identical; largest |diff|: {}",
+            self.identical,
+            self.total,
+            list.join(", ")
+        );
+    }
+}
+
+fn widen<const R: usize, const C: usize>(m: [[f32; C]; R]) -> Vec<f64> {
+    m.iter().flatten().map(|&x| f64::from(x)).collect()
+}
+
+fn flat<const R: usize, const C: usize>(m: [[f64; C]; R]) -> Vec<f64> {
+    m.iter().flatten().copied().collect()
+}
+
+fn main() -> ExitCode {
+    let mut text = String::new();
+    let read = match std::env::args().nth(1) {
+        Some(path) => std::fs::read_to_string(&path)
+            .map(|t| text = t)
+            .map_err(|e| format!("{path}: {e}")),
+        None => std::io::stdin()
+            .read_to_string(&mut text)
+            .map(|_| ())
+            .map_err(|e| format!("stdin: {e}")),
+    };
+    let records = match read.and_then(|()| parse(&text)) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("check: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let get = |s: &str, case: usize, name: &str| records.get(&(s.into(), case, name.into()));
+
+    let eps = f64::from(f32::EPSILON);
+    let (r64, r32) = (Ur5::default(), Ur5F32::default());
+    let mut failures = Vec::new();
+    let mut f64_fw = Compare {
+        failures: &mut Vec::new(),
+        worst: HashMap::new(),
+        identical: 0,
+        total: 0,
+    };
+    let mut f64_failures = Vec::new();
+    f64_fw.failures = &mut f64_failures;
+    let exact = |_| 1e-12;
+    for (case, q) in CONFIGS.iter().enumerate() {
+        f64_fw.check("q", case, get("f64", case, "q"), q, &|_| 0.0);
+        f64_fw.check("fk", case, get("f64", case, "fk"), &flat(r64.fk(q)), &exact);
+        f64_fw.check(
+            "jac",
+            case,
+            get("f64", case, "jac"),
+            &flat(r64.jacobian(q)),
+            &exact,
+        );
+        f64_fw.check(
+            "det",
+            case,
+            get("f64", case, "det"),
+            &[r64.jacobian_det(q)],
+            &exact,
+        );
+    }
+    f64_fw.report("f64 firmware vs f64 host");
+    failures.append(&mut f64_failures);
+
+    // f32 against the host's f32 twin: the same single-precision code on another IEEE machine.
+    let mut f32_failures = Vec::new();
+    let mut f32_fw = Compare {
+        failures: &mut f32_failures,
+        worst: HashMap::new(),
+        identical: 0,
+        total: 0,
+    };
+    let close = |_| 1e-12;
+    for (case, q) in CONFIGS.iter().enumerate() {
+        let q32 = to_f32(q);
+        let qw: Vec<f64> = q32.iter().map(|&x| f64::from(x)).collect();
+        f32_fw.check("q", case, get("f32", case, "q"), &qw, &|_| 0.0);
+        f32_fw.check(
+            "fk",
+            case,
+            get("f32", case, "fk"),
+            &widen(r32.fk(&q32)),
+            &close,
+        );
+        f32_fw.check(
+            "jac",
+            case,
+            get("f32", case, "jac"),
+            &widen(r32.jacobian(&q32)),
+            &close,
+        );
+        let d = f64::from(r32.jacobian_det(&q32));
+        f32_fw.check("det", case, get("f32", case, "det"), &[d], &close);
+    }
+    f32_fw.report("f32 firmware vs f32 host");
+    failures.append(&mut f32_failures);
+
+    // f32 against f64 at the same joint values: the single-precision error.
+    let mut err_failures = Vec::new();
+    let mut f32_err = Compare {
+        failures: &mut err_failures,
+        worst: HashMap::new(),
+        identical: 0,
+        total: 0,
+    };
+    // fk entries: rotation (columns 0..3) and position (column 3) of rows 0..3.
+    let fk_bound = |i: usize| {
+        if i % 4 == 3 {
+            4.0 * eps * REACH
+        } else {
+            4.0 * eps
+        }
+    };
+    // jac: rows 0..3 linear (m), rows 3..6 angular.
+    let jac_bound = |i: usize| {
+        if i < 18 {
+            4.0 * eps * REACH
+        } else {
+            4.0 * eps
+        }
+    };
+    for (case, q) in CONFIGS.iter().enumerate() {
+        let q = to_f32(q).map(f64::from);
+        f32_err.check(
+            "fk",
+            case,
+            get("f32", case, "fk"),
+            &flat(r64.fk(&q)),
+            &fk_bound,
+        );
+        f32_err.check(
+            "jac",
+            case,
+            get("f32", case, "jac"),
+            &flat(r64.jacobian(&q)),
+            &jac_bound,
+        );
+        let d = r64.jacobian_det(&q);
+        f32_err.check("det", case, get("f32", case, "det"), &[d], &|_| {
+            8.0 * eps * DET_SCALE
+        });
+    }
+    f32_err.report("f32 firmware vs f64 host (same q)");
+    failures.append(&mut err_failures);
+
+    if failures.is_empty() {
+        println!(
+            "check: firmware output agrees with the host ({} configurations)",
+            CONFIGS.len()
+        );
+        ExitCode::SUCCESS
+    } else {
+        for f in &failures {
+            eprintln!("check: {f}");
+        }
+        eprintln!("check: {} disagreement(s)", failures.len());
+        ExitCode::FAILURE
+    }
+}

@@ -1,0 +1,189 @@
+//! UR5 forward kinematics, Jacobian and determinant in f64 and f32 on a Cortex-M4F,
+//! reported over semihosting (QEMU `mps2-an386`; see README.md).
+//!
+//! Output, one record per line, fields separated by one space, numbers in Rust's `{:?}`
+//! form (shortest text that reads back to the same float):
+//!
+//! ```text
+//! kinegen-firmware v1
+//! cpacr 0x00f00000                      FPU access bits (CP10/CP11 full access = 0x00f00000)
+//! <f64|f32> <case> q   <6 joint values>
+//! <f64|f32> <case> fk  <16 entries of T, row-major>
+//! <f64|f32> <case> jac <36 entries of J, row-major>
+//! <f64|f32> <case> det <det J>
+//! end
+//! ```
+//!
+//! then a semihosting exit with status 0. A panic or a HardFault prints `error ...` and
+//! exits with status 1, so QEMU never keeps running.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::fmt::Write;
+    use core::hint::black_box;
+
+    use cortex_m_rt::{entry, exception, ExceptionFrame};
+    use cortex_m_semihosting::{debug, hio};
+    use kinegen_firmware::{to_f32, Ur5F32, CONFIGS, HEADER, TRAILER};
+    use kinegen_robots::Ur5;
+
+    // One function per generated method, never inlined, with plain symbol names: their
+    // sizes in the ELF are the flash the generated code takes (README.md, "Flash size").
+
+    /// `Ur5::fk` (f64, software floating point on the M4F).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_fk_f64(r: &Ur5, q: &[f64; 6]) -> [[f64; 4]; 4] {
+        r.fk(q)
+    }
+    /// `Ur5::jacobian` (f64).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_jacobian_f64(r: &Ur5, q: &[f64; 6]) -> [[f64; 6]; 6] {
+        r.jacobian(q)
+    }
+    /// `Ur5::jacobian_det` (f64).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_jacobian_det_f64(r: &Ur5, q: &[f64; 6]) -> f64 {
+        r.jacobian_det(q)
+    }
+    /// `Ur5F32::fk` (f32, on the FPU).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_fk_f32(r: &Ur5F32, q: &[f32; 6]) -> [[f32; 4]; 4] {
+        r.fk(q)
+    }
+    /// `Ur5F32::jacobian` (f32).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_jacobian_f32(r: &Ur5F32, q: &[f32; 6]) -> [[f32; 6]; 6] {
+        r.jacobian(q)
+    }
+    /// `Ur5F32::jacobian_det` (f32).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_jacobian_det_f32(r: &Ur5F32, q: &[f32; 6]) -> f32 {
+        r.jacobian_det(q)
+    }
+
+    /// Ends the QEMU run with `status` (semihosting `SYS_EXIT`); on a debug probe that
+    /// ignores it, waits here.
+    fn exit(status: debug::ExitStatus) -> ! {
+        debug::exit(status);
+        loop {
+            core::hint::spin_loop();
+        }
+    }
+
+    /// `name` followed by the values, one line.
+    fn record<T: core::fmt::Debug>(
+        out: &mut hio::HostStream,
+        scalar: &str,
+        case: usize,
+        name: &str,
+        values: impl IntoIterator<Item = T>,
+    ) {
+        let _ = write!(out, "{scalar} {case} {name}");
+        for v in values {
+            let _ = write!(out, " {v:?}");
+        }
+        let _ = writeln!(out);
+    }
+
+    #[entry]
+    fn main() -> ! {
+        let Ok(mut out) = hio::hstdout() else {
+            exit(debug::EXIT_FAILURE);
+        };
+        let _ = writeln!(out, "{HEADER}");
+        // Coprocessor Access Control Register: cortex-m-rt's reset code grants CP10/CP11
+        // (the FPU) full access on eabihf targets; without it the first f32 instruction
+        // would fault.
+        // SAFETY: CPACR is an always-readable System Control Block register.
+        let cpacr = unsafe { core::ptr::read_volatile(0xE000_ED88 as *const u32) };
+        let _ = writeln!(out, "cpacr {cpacr:#010x}");
+
+        // black_box: the configurations are constants; keep the compiler from
+        // evaluating the kinematics at compile time.
+        let (r64, r32) = (black_box(Ur5::default()), black_box(Ur5F32::default()));
+        for (case, q) in CONFIGS.iter().enumerate() {
+            let q = black_box(*q);
+            record(&mut out, "f64", case, "q", q);
+            record(
+                &mut out,
+                "f64",
+                case,
+                "fk",
+                ur5_fk_f64(&r64, &q).into_iter().flatten(),
+            );
+            record(
+                &mut out,
+                "f64",
+                case,
+                "jac",
+                ur5_jacobian_f64(&r64, &q).into_iter().flatten(),
+            );
+            record(
+                &mut out,
+                "f64",
+                case,
+                "det",
+                [ur5_jacobian_det_f64(&r64, &q)],
+            );
+
+            let q = black_box(to_f32(&q));
+            record(&mut out, "f32", case, "q", q);
+            record(
+                &mut out,
+                "f32",
+                case,
+                "fk",
+                ur5_fk_f32(&r32, &q).into_iter().flatten(),
+            );
+            record(
+                &mut out,
+                "f32",
+                case,
+                "jac",
+                ur5_jacobian_f32(&r32, &q).into_iter().flatten(),
+            );
+            record(
+                &mut out,
+                "f32",
+                case,
+                "det",
+                [ur5_jacobian_det_f32(&r32, &q)],
+            );
+        }
+        let _ = writeln!(out, "{TRAILER}");
+        exit(debug::EXIT_SUCCESS)
+    }
+
+    #[exception]
+    unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+        if let Ok(mut out) = hio::hstdout() {
+            let _ = writeln!(out, "error HardFault at pc {:#010x}", frame.pc());
+        }
+        exit(debug::EXIT_FAILURE)
+    }
+
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo) -> ! {
+        if let Ok(mut out) = hio::hstdout() {
+            let _ = writeln!(out, "error {info}");
+        }
+        exit(debug::EXIT_FAILURE)
+    }
+}
+
+/// The firmware binary is for the microcontroller only.
+#[cfg(not(target_os = "none"))]
+fn main() {
+    eprintln!(
+        "the `firmware` binary runs on thumbv7em-none-eabihf (see README.md); \
+         on the host, run `check`"
+    );
+    std::process::exit(2);
+}

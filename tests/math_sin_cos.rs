@@ -1,0 +1,274 @@
+//! `kinegen::math::sin_cos` (and `sin_cos_f32`) against `libm::sin`/`libm::cos` and the
+//! platform's `f64::sin`/`f64::cos`: random arguments, the neighbourhoods of multiples of
+//! π/2 where argument reduction cancels, the thresholds of the fast path, ±0, subnormals,
+//! huge values, NaN and ±∞. Run with `--nocapture` to see the measured differences.
+
+use kinegen::math::{sin_cos, sin_cos_f32};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// xorshift64*, deterministic.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Distance in ulps (signed zero counts as equal to zero).
+fn ulps(a: f64, b: f64) -> u64 {
+    let key = |x: f64| {
+        let b = x.to_bits() as i64;
+        if b < 0 {
+            i64::MIN - b
+        } else {
+            b
+        }
+    };
+    key(a).abs_diff(key(b))
+}
+
+fn ulps_f32(a: f32, b: f32) -> u32 {
+    let key = |x: f32| {
+        let b = x.to_bits() as i32;
+        if b < 0 {
+            i32::MIN - b
+        } else {
+            b
+        }
+    };
+    key(a).abs_diff(key(b))
+}
+
+/// Worst differences of `sin_cos` from one reference over a set of arguments.
+#[derive(Default, Debug)]
+struct Worst {
+    n: usize,
+    abs: f64,
+    abs_at: f64,
+    ulps: u64,
+    ulps_at: f64,
+    bit_differences: usize,
+}
+
+impl Worst {
+    fn add(&mut self, x: f64, got: f64, want: f64) {
+        self.n += 1;
+        let (d, u) = ((got - want).abs(), ulps(got, want));
+        if d > self.abs {
+            (self.abs, self.abs_at) = (d, x);
+        }
+        if u > self.ulps {
+            (self.ulps, self.ulps_at) = (u, x);
+        }
+        if got.to_bits() != want.to_bits() {
+            self.bit_differences += 1;
+        }
+    }
+}
+
+/// Compare on `xs`; assert ≤ 1 ulp and ≤ `max_abs` against both references.
+fn compare(label: &str, xs: impl Iterator<Item = f64>, max_abs: f64) {
+    let (mut libm_w, mut std_w) = (Worst::default(), Worst::default());
+    for x in xs {
+        let (s, c) = sin_cos(x);
+        libm_w.add(x, s, libm::sin(x));
+        libm_w.add(x, c, libm::cos(x));
+        std_w.add(x, s, x.sin());
+        std_w.add(x, c, x.cos());
+    }
+    println!("{label}: vs libm {libm_w:?}");
+    println!("{label}: vs f64::sin/cos {std_w:?}");
+    for (who, w) in [("libm", &libm_w), ("f64::sin/cos", &std_w)] {
+        assert!(
+            w.ulps <= 1,
+            "{label}: {} ulps from {who} at x = {:e}",
+            w.ulps,
+            w.ulps_at
+        );
+        assert!(
+            w.abs <= max_abs,
+            "{label}: |Δ| = {:e} from {who} at x = {:e}",
+            w.abs,
+            w.abs_at
+        );
+    }
+}
+
+#[test]
+fn random_arguments_in_four_pi() {
+    let mut rng = Rng(0x5eed_0001);
+    let xs = (0..1_000_000).map(|_| (2.0 * rng.unit() - 1.0) * 4.0 * PI);
+    // One ulp of a number below 1 is at most 1.1e-16.
+    compare("uniform [-4π, 4π]", xs, 1.2e-16);
+}
+
+#[test]
+fn random_magnitudes_up_to_the_fast_path_bound() {
+    // Log-uniform |x| in [1e-9, 1.6e6]: every quadrant count the fast path handles.
+    let mut rng = Rng(0x5eed_0002);
+    let xs = (0..300_000).map(|_| {
+        let m = 10f64.powf(-9.0 + 15.2 * rng.unit());
+        if rng.next() & 1 == 0 {
+            m
+        } else {
+            -m
+        }
+    });
+    compare("log-uniform |x| ≤ 1.6e6", xs, 1.2e-16);
+}
+
+#[test]
+fn near_multiples_of_half_pi() {
+    // k·π/2 rounded to double and its neighbours: sin or cos is tiny there, and the
+    // reduction needs its second and third rounds. Absolute error is what matters for
+    // kinematics; ulps of a tiny result are checked too.
+    let mut xs = Vec::new();
+    for k in (1..=64i64).chain([1000, 12345, 99_999, 333_333, 666_667]) {
+        let x0 = k as f64 * FRAC_PI_2;
+        for dx in -3i64..=3 {
+            let x = f64::from_bits((x0.to_bits() as i64 + dx) as u64);
+            xs.push(x);
+            xs.push(-x);
+        }
+    }
+    compare("k·π/2 ± 3 ulps", xs.into_iter(), 1.2e-16);
+}
+
+#[test]
+fn thresholds_of_the_fast_path() {
+    let mut xs = Vec::new();
+    // |x| = 2⁻²⁷·√2 (tiny cut-off) and 2²⁰·π/2 (fast-path bound), ± a few ulps.
+    for edge in [
+        f64::from_bits(0x3e46_a09e_0000_0000),
+        f64::from_bits(0x4139_21fb_0000_0000),
+        f64::from_bits(0x4139_21fb_5444_2d18),
+        FRAC_PI_2 / 2.0,
+    ] {
+        for dx in -4i64..=4 {
+            let x = f64::from_bits((edge.to_bits() as i64 + dx) as u64);
+            xs.push(x);
+            xs.push(-x);
+        }
+    }
+    compare("thresholds", xs.into_iter(), 1.2e-16);
+}
+
+#[test]
+fn zero_tiny_and_subnormal_keep_the_sign() {
+    for x in [
+        0.0,
+        -0.0,
+        f64::MIN_POSITIVE,
+        -f64::MIN_POSITIVE,
+        5e-324,
+        -5e-324,
+        1e-300,
+        -1e-20,
+        1e-9,
+    ] {
+        let (s, c) = sin_cos(x);
+        assert_eq!(s.to_bits(), libm::sin(x).to_bits(), "sin({x:e})");
+        assert_eq!(c.to_bits(), libm::cos(x).to_bits(), "cos({x:e})");
+    }
+    assert!(sin_cos(-0.0).0.is_sign_negative());
+}
+
+#[test]
+fn huge_values_match_libm_exactly() {
+    // Beyond the fast path `sin_cos` is libm, bit for bit.
+    for x in [1.7e6, 1e7, 1e10, 1e22, 1e300, f64::MAX, -1e15, -f64::MAX] {
+        let (s, c) = sin_cos(x);
+        assert_eq!(s.to_bits(), libm::sin(x).to_bits(), "sin({x:e})");
+        assert_eq!(c.to_bits(), libm::cos(x).to_bits(), "cos({x:e})");
+        assert!(
+            ulps(s, x.sin()) <= 1 && ulps(c, x.cos()) <= 1,
+            "{x:e} vs f64"
+        );
+    }
+}
+
+#[test]
+fn reduction_constant_is_fdlibms() {
+    // `sin_cos` takes 2/π from `core` (clippy prefers it); it must be fdlibm's `invpio2`.
+    assert_eq!(std::f64::consts::FRAC_2_PI.to_bits(), 0x3fe4_5f30_6dc9_c883);
+}
+
+#[test]
+fn nan_and_infinity_give_nan() {
+    for x in [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let (s, c) = sin_cos(x);
+        assert!(s.is_nan() && c.is_nan(), "sin_cos({x}) = ({s}, {c})");
+        assert!(libm::sin(x).is_nan() && libm::cos(x).is_nan());
+    }
+}
+
+#[test]
+fn pythagoras_holds_to_rounding() {
+    let mut rng = Rng(0x5eed_0003);
+    for _ in 0..100_000 {
+        let x = (2.0 * rng.unit() - 1.0) * 100.0;
+        let (s, c) = sin_cos(x);
+        assert!((s * s + c * c - 1.0).abs() <= 4.0 * f64::EPSILON, "x = {x}");
+    }
+}
+
+#[test]
+fn single_precision_against_libm_and_std() {
+    let mut rng = Rng(0x5eed_0004);
+    let mut xs: Vec<f32> = (0..500_000)
+        .map(|_| ((2.0 * rng.unit() - 1.0) * 4.0 * PI) as f32)
+        .collect();
+    xs.extend((0..200_000).map(|_| {
+        let m = 10f64.powf(-5.0 + 13.0 * rng.unit()) as f32;
+        if rng.next() & 1 == 0 {
+            m
+        } else {
+            -m
+        }
+    }));
+    for k in 1..=64 {
+        let x0 = (k as f64 * FRAC_PI_2) as f32;
+        for dx in -3i32..=3 {
+            xs.push(f32::from_bits((x0.to_bits() as i32 + dx) as u32));
+        }
+    }
+    xs.extend([0.0, -0.0, 1e-30, -1e-40, 2.4e-4, 1e9, f32::MAX, -f32::MAX]);
+    let (mut worst_libm, mut worst_std, mut worst_abs) = (0u32, 0u32, 0f64);
+    for &x in &xs {
+        let (s, c) = sin_cos_f32(x);
+        for (got, want, std_want, exact) in [
+            (s, libm::sinf(x), x.sin(), (x as f64).sin()),
+            (c, libm::cosf(x), x.cos(), (x as f64).cos()),
+        ] {
+            worst_libm = worst_libm.max(ulps_f32(got, want));
+            worst_std = worst_std.max(ulps_f32(got, std_want));
+            worst_abs = worst_abs.max((got as f64 - exact).abs());
+            assert!(ulps_f32(got, want) <= 1, "f32 {x:e}: {got} vs libm {want}");
+            assert!(
+                ulps_f32(got, std_want) <= 1,
+                "f32 {x:e}: {got} vs std {std_want}"
+            );
+            // Rounded once from a < 1-ulp double result: within an f32 ulp of the truth.
+            assert!(
+                (got as f64 - exact).abs() <= 6e-8,
+                "f32 {x:e}: {got} vs {exact}"
+            );
+        }
+    }
+    println!(
+        "f32 ({} arguments): max ulps vs libm {worst_libm}, vs std {worst_std}, max |Δ| vs f64 sin/cos {worst_abs:e}",
+        xs.len()
+    );
+    assert!(sin_cos_f32(-0.0).0.is_sign_negative());
+    for x in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        let (s, c) = sin_cos_f32(x);
+        assert!(s.is_nan() && c.is_nan());
+    }
+}
