@@ -16,6 +16,9 @@
 //! Text is drawn with DejaVu Sans read at run time (Debian/Ubuntu package
 //! `fonts-dejavu-core`); set `KINEGEN_FONT=/path/to/font.ttf` to use another TrueType font.
 
+#[path = "common/font.rs"]
+mod font;
+
 use std::error::Error;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -23,7 +26,6 @@ use std::path::{Path, PathBuf};
 use kinegen_robots::{PlanarRr, Ur5};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::register_font;
 
 /// Grid cells per axis of the heat maps.
 const CELLS: usize = 320;
@@ -31,7 +33,7 @@ const CELLS: usize = 320;
 const DECADES: f64 = 4.0;
 
 fn main() -> Result<(), Box<dyn Error>> {
-    load_font()?;
+    font::load_font()?;
     let out: PathBuf = std::env::args_os()
         .nth(1)
         .map(PathBuf::from)
@@ -464,37 +466,4 @@ fn fmt_angle(x: f64) -> String {
     } else {
         format!("{x}")
     }
-}
-
-/// Registers a TrueType font as "sans-serif" for plotters' pure-Rust (`ab_glyph`) text.
-fn load_font() -> Result<(), Box<dyn Error>> {
-    let candidates = std::env::var_os("KINEGEN_FONT")
-        .map(PathBuf::from)
-        .into_iter()
-        .chain(
-            [
-                "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", // Debian, Ubuntu
-                "/usr/share/fonts/TTF/DejaVuSans.ttf",             // Arch
-                "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf", // Fedora
-                "/Library/Fonts/Arial.ttf",
-                "/System/Library/Fonts/Supplemental/Arial.ttf",
-                "C:\\Windows\\Fonts\\arial.ttf",
-            ]
-            .into_iter()
-            .map(PathBuf::from),
-        );
-    for path in candidates {
-        if let Ok(bytes) = std::fs::read(&path) {
-            // plotters keeps the font for the whole run: leak the bytes once.
-            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-            register_font("sans-serif", FontStyle::Normal, bytes)
-                .map_err(|_| format!("{} is not a usable TrueType font", path.display()))?;
-            return Ok(());
-        }
-    }
-    Err(
-        "no TrueType font found: install the Debian package `fonts-dejavu-core` \
-         or set KINEGEN_FONT=/path/to/font.ttf"
-            .into(),
-    )
 }

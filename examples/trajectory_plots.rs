@@ -8,12 +8,14 @@
 //! Text is drawn with DejaVu Sans read at run time (Debian/Ubuntu package
 //! `fonts-dejavu-core`); set `KINEGEN_FONT=/path/to/font.ttf` to use another TrueType font.
 
+#[path = "common/font.rs"]
+mod font;
+
 use std::error::Error;
 use std::path::{Path, PathBuf};
 
 use kinegen::trajectory::{Cubic, Profile, Quintic, StopAtVias, ThroughVias, Trapezoid};
 use plotters::prelude::*;
-use plotters::style::register_font;
 
 /// One curve: a label, a colour and its samples `(t, q, q̇, q̈)`.
 struct Curve {
@@ -45,7 +47,7 @@ const ORANGE_: RGBColor = RGBColor(230, 110, 20);
 const GREY: RGBColor = RGBColor(150, 150, 150);
 
 fn main() -> Result<(), Box<dyn Error>> {
-    load_font()?;
+    font::load_font()?;
     let out: PathBuf = std::env::args_os()
         .nth(1)
         .map(PathBuf::from)
@@ -220,37 +222,4 @@ fn tick(x: f64, range: f64) -> String {
         Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
         _ => s,
     }
-}
-
-/// Registers a TrueType font as "sans-serif" for plotters' pure-Rust (`ab_glyph`) text.
-fn load_font() -> Result<(), Box<dyn Error>> {
-    let candidates = std::env::var_os("KINEGEN_FONT")
-        .map(PathBuf::from)
-        .into_iter()
-        .chain(
-            [
-                "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", // Debian, Ubuntu
-                "/usr/share/fonts/TTF/DejaVuSans.ttf",             // Arch
-                "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf", // Fedora
-                "/Library/Fonts/Arial.ttf",
-                "/System/Library/Fonts/Supplemental/Arial.ttf",
-                "C:\\Windows\\Fonts\\arial.ttf",
-            ]
-            .into_iter()
-            .map(PathBuf::from),
-        );
-    for path in candidates {
-        if let Ok(bytes) = std::fs::read(&path) {
-            // plotters keeps the font for the whole run: leak the bytes once.
-            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-            register_font("sans-serif", FontStyle::Normal, bytes)
-                .map_err(|_| format!("{} is not a usable TrueType font", path.display()))?;
-            return Ok(());
-        }
-    }
-    Err(
-        "no TrueType font found: install the Debian package `fonts-dejavu-core` \
-         or set KINEGEN_FONT=/path/to/font.ttf"
-            .into(),
-    )
 }
