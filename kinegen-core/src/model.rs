@@ -90,62 +90,48 @@ impl Model {
             .as_ref()
             .map(|t| t.iter().map(|r| jacobian[r.index()].clone()).collect())
             .unwrap_or_default();
+        let out = Outputs {
+            fk: fk_rows,
+            frames: frame_rows,
+            jacobian,
+            jacobian_ee,
+            task,
+        };
         // e-graph polish of every inline expression, checked before use.
-        let mut all: Vec<Id> = fk_rows.iter().flatten().copied().collect();
-        for r in &frame_rows {
-            all.extend(r.iter().flatten());
-        }
-        for m in [&jacobian, &jacobian_ee, &task] {
-            all.extend(m.iter().flatten());
-        }
         let mut polish = crate::polish::Report::default();
-        let new = crate::polish::polish(
+        let ids = crate::polish::polish(
             &mut chain,
-            &all,
+            &out.ids(),
             &options.budget,
             &options.extra_rewrites,
             &mut polish,
         );
-        let remap: std::collections::HashMap<Id, Id> = all.iter().copied().zip(new).collect();
-        let re = |x: &Id| remap[x];
-        let fk_rows = fk_rows.map(|r| r.map(|x| re(&x)));
-        let frame_rows: Vec<[[Id; 4]; 3]> = frame_rows
-            .iter()
-            .map(|f| f.map(|r| r.map(|x| re(&x))))
-            .collect();
-        let [jacobian, jacobian_ee, task] = [&jacobian, &jacobian_ee, &task].map(|m| {
-            m.iter()
-                .map(|row| row.iter().map(re).collect())
-                .collect::<Rows>()
-        });
-        let g = &mut chain.graph;
-        let before: Vec<Id> = flat(&fk_rows, &frame_rows, [&jacobian, &jacobian_ee, &task]);
-        let fk_rows = inward_rows(g, &fk_rows);
-        let frame_rows: Vec<[[Id; 4]; 3]> = frame_rows.iter().map(|r| inward_rows(g, r)).collect();
-        let [jacobian, jacobian_ee, task] =
-            [&jacobian, &jacobian_ee, &task].map(|m| inward_matrix(g, m));
+        let out = out.with_ids(ids);
         let mut notes = polish.notes.clone();
-        // Moving signs copies normal forms instead of recomputing them: check values.
-        let after = flat(&fk_rows, &frame_rows, [&jacobian, &jacobian_ee, &task]);
+        // Signs onto leaves, per output group; the pass copies normal forms instead of
+        // recomputing them, so check it by value.
+        let g = &mut chain.graph;
+        let inward = Outputs {
+            fk: inward_rows(g, &out.fk),
+            frames: out.frames.iter().map(|r| inward_rows(g, r)).collect(),
+            jacobian: inward_matrix(g, &out.jacobian),
+            jacobian_ee: inward_matrix(g, &out.jacobian_ee),
+            task: inward_matrix(g, &out.task),
+        };
         let probe = crate::polish::Probe::new(&chain);
-        let bad = before
-            .iter()
-            .zip(&after)
-            .any(|(&b, &a)| a != b && !probe.same_values(&chain.graph, a, b));
-        let (fk_rows, frame_rows, jacobian, jacobian_ee, task) = if bad {
+        let bad = out
+            .ids()
+            .into_iter()
+            .zip(inward.ids())
+            .any(|(b, a)| a != b && !probe.same_values(&chain.graph, a, b));
+        let out = if bad {
             notes.push(
                 "internal check failed after moving signs: the unsimplified expressions are emitted"
                     .into(),
             );
-            let mut it = before.into_iter();
-            unflat(
-                &mut it,
-                &fk_rows,
-                &frame_rows,
-                [&jacobian, &jacobian_ee, &task],
-            )
+            out
         } else {
-            (fk_rows, frame_rows, jacobian, jacobian_ee, task)
+            inward
         };
         if chain.graph.nf_overflows > 0 {
             notes.push(format!(
@@ -155,49 +141,63 @@ impl Model {
         }
         Model {
             chain,
-            fk_rows,
-            frame_rows,
-            jacobian,
-            jacobian_ee,
-            task,
+            fk_rows: out.fk,
+            frame_rows: out.frames,
+            jacobian: out.jacobian,
+            jacobian_ee: out.jacobian_ee,
+            task: out.task,
             notes,
             polish,
         }
     }
 }
 
-fn flat(fk: &[[Id; 4]; 3], frames: &[[[Id; 4]; 3]], ms: [&Rows; 3]) -> Vec<Id> {
-    let mut v: Vec<Id> = fk.iter().flatten().copied().collect();
-    for f in frames {
-        v.extend(f.iter().flatten());
-    }
-    for m in ms {
-        v.extend(m.iter().flatten());
-    }
-    v
+/// The model's outputs while they are rewritten, and their ids in one fixed order.
+struct Outputs {
+    fk: [[Id; 4]; 3],
+    frames: Vec<[[Id; 4]; 3]>,
+    jacobian: Rows,
+    jacobian_ee: Rows,
+    task: Rows,
 }
 
-type Outputs = ([[Id; 4]; 3], Vec<[[Id; 4]; 3]>, Rows, Rows, Rows);
+impl Outputs {
+    /// Every id: fk, frames, jacobian, jacobian_ee, task, row-major.
+    fn ids(&self) -> Vec<Id> {
+        let mut v: Vec<Id> = self.fk.iter().flatten().copied().collect();
+        for f in &self.frames {
+            v.extend(f.iter().flatten());
+        }
+        for m in [&self.jacobian, &self.jacobian_ee, &self.task] {
+            v.extend(m.iter().flatten());
+        }
+        v
+    }
 
-/// The inverse of [`flat`], shaped like the given outputs.
-fn unflat(
-    it: &mut impl Iterator<Item = Id>,
-    fk: &[[Id; 4]; 3],
-    frames: &[[[Id; 4]; 3]],
-    ms: [&Rows; 3],
-) -> Outputs {
-    let mut next = || it.next().expect("same shape");
-    let fk = fk.map(|r| r.map(|_| next()));
-    let frames = frames
-        .iter()
-        .map(|f| f.map(|r| r.map(|_| next())))
-        .collect();
-    let [a, b, c] = ms.map(|m| {
-        m.iter()
-            .map(|row| row.iter().map(|_| next()).collect())
-            .collect::<Rows>()
-    });
-    (fk, frames, a, b, c)
+    /// The same shape filled with `ids`, in the order of [`Outputs::ids`].
+    fn with_ids(&self, ids: Vec<Id>) -> Outputs {
+        let mut it = ids.into_iter();
+        let mut next = || it.next().expect("same shape");
+        let fk = self.fk.map(|r| r.map(|_| next()));
+        let frames = self
+            .frames
+            .iter()
+            .map(|f| f.map(|r| r.map(|_| next())))
+            .collect();
+        let [jacobian, jacobian_ee, task] =
+            [&self.jacobian, &self.jacobian_ee, &self.task].map(|m| {
+                m.iter()
+                    .map(|row| row.iter().map(|_| next()).collect())
+                    .collect::<Rows>()
+            });
+        Outputs {
+            fk,
+            frames,
+            jacobian,
+            jacobian_ee,
+            task,
+        }
+    }
 }
 
 fn inward_rows(g: &mut crate::graph::Graph, r: &[[Id; 4]; 3]) -> [[Id; 4]; 3] {
