@@ -2,21 +2,13 @@
 //! a separate process with its own hash seeds, prints byte for byte what `generate`
 //! gives in this one, for every robot of `robots/`.
 
-use std::path::{Path, PathBuf};
+#[path = "../../kinegen-core/tests/common/mod.rs"]
+mod common;
+use common::robot_files;
+
 use std::process::{Command, Stdio};
 
 use kinegen_core::{generate, toml_input, ItemHeader};
-
-fn robot_files() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml") && !p.ends_with("Cargo.toml"))
-        .collect();
-    files.sort();
-    files
-}
 
 #[test]
 fn the_cli_prints_the_same_code_as_this_process() {

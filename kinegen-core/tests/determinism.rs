@@ -5,20 +5,12 @@
 //! so two runs in one process already differ in every hash-map iteration order; the
 //! second process is in `kinegen-cli/tests/determinism.rs`.
 
-use std::path::{Path, PathBuf};
+mod common;
+use common::robot_files;
+
+use std::path::Path;
 
 use kinegen_core::{generate, toml_input, ItemHeader};
-
-fn robot_files() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml") && !p.ends_with("Cargo.toml"))
-        .collect();
-    files.sort();
-    files
-}
 
 /// Code and notes of one run.
 fn run(path: &Path) -> (String, Vec<String>) {

@@ -2,26 +2,13 @@
 //! reference, and its three numeric Jacobians (axes, finite differences, velocity
 //! propagation) agree at random configurations within the joint limits.
 
-use std::path::{Path, PathBuf};
+mod common;
+use common::robot_files;
 
 use kinegen_core::numeric::NumericRobot;
 use kinegen_core::toml_input::load_file;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
-
-fn robots_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots")
-}
-
-fn robot_files() -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(robots_dir())
-        .expect("robots/ exists")
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml") && !p.ends_with("Cargo.toml"))
-        .collect();
-    files.sort();
-    files
-}
 
 /// A `# home: q = [...], position = [...]` line (see robots/README.md).
 #[derive(Debug)]
