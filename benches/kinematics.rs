@@ -353,6 +353,10 @@ fn bench_robot<const N: usize, K: Kinematics<N>, D: Fn(&[f64; N]) -> f64>(
     g.bench_function("baseline/sin_cos_kinegen_math", |b| {
         cycle(b, &qs, |q| q.map(kinegen::math::sin_cos))
     });
+    // The same N angles in one batched call (lanes side by side in SIMD registers).
+    g.bench_function("baseline/sin_cos_kinegen_math_n", |b| {
+        cycle(b, &qs, kinegen::math::sin_cos_n)
+    });
     g.bench_function("generated/jacobian", |b| {
         cycle(b, &qs, |q| robot.jacobian(&q))
     });
@@ -478,15 +482,21 @@ fn summary(since: SystemTime) {
         }
     }
     println!("\n## The trig floor: one sin_cos per joint (ns), and generated jacobian / it\n");
-    println!("| robot | generated jacobian | f64::sin_cos | libm::sincos | libm::sin + libm::cos | kinegen::math::sin_cos | J / f64::sin_cos | J / libm::sincos | J / libm sin+cos | J / kinegen::math |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| robot | generated jacobian | f64::sin_cos | libm::sincos | libm::sin + libm::cos | kinegen::math::sin_cos | kinegen::math::sin_cos_n | J / f64::sin_cos | J / libm::sincos | J / libm sin+cos | J / kinegen::math | J / kinegen::math (batched) |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for robot in ROBOTS {
         let g = median(robot, "generated/jacobian", since);
-        if g.is_none() {
+        let b = |id: &str| median(robot, &format!("baseline/sin_cos_{id}"), since);
+        let ids = [
+            "f64",
+            "libm_sincos",
+            "libm_sin_and_cos",
+            "kinegen_math",
+            "kinegen_math_n",
+        ];
+        if g.is_none() && ids.iter().all(|id| b(id).is_none()) {
             continue;
         }
-        let b = |id: &str| median(robot, &format!("baseline/sin_cos_{id}"), since);
-        let ids = ["f64", "libm_sincos", "libm_sin_and_cos", "kinegen_math"];
         print!("| {robot} | {} |", fmt(g));
         for id in ids {
             print!(" {} |", fmt(b(id)));
@@ -495,6 +505,19 @@ fn summary(since: SystemTime) {
             print!(" {} |", ratio(g, b(id)));
         }
         println!();
+    }
+    println!("\n## N scalar kinegen::math::sin_cos / one kinegen::math::sin_cos_n (criterion)\n");
+    for robot in ROBOTS {
+        let b = |id: &str| median(robot, &format!("baseline/sin_cos_{id}"), since);
+        let (scalar, batched) = (b("kinegen_math"), b("kinegen_math_n"));
+        if scalar.is_some() || batched.is_some() {
+            println!(
+                "| {robot} | {} ns | {} ns | {} |",
+                fmt(scalar),
+                fmt(batched),
+                ratio(scalar, batched)
+            );
+        }
     }
 }
 
@@ -550,17 +573,23 @@ fn paired_row<const N: usize, K: Kinematics<N>>(name: &str, robot: &K, file: &st
         paired(&qs, j, |q| q.map(libm::sincos)),
         paired(&qs, j, |q| q.map(|x| (libm::sin(x), libm::cos(x)))),
         paired(&qs, j, |q| q.map(kinegen::math::sin_cos)),
+        paired(&qs, j, kinegen::math::sin_cos_n),
+        paired(
+            &qs,
+            |q| q.map(kinegen::math::sin_cos),
+            kinegen::math::sin_cos_n,
+        ),
     ];
     println!(
-        "| {name} | {:.2}× | {:.2}× | {:.2}× | {:.2}× | {:.2}× | {:.2}× |",
-        r[0], r[1], r[2], r[3], r[4], r[5]
+        "| {name} | {:.2}× | {:.2}× | {:.2}× | {:.2}× | {:.2}× | {:.2}× | {:.2}× | {:.2}× |",
+        r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7]
     );
 }
 
 fn paired_table() {
     println!("\n## Jacobian ratios from interleaved batches (median of 41 rounds)\n");
-    println!("| robot | k / generated | nalgebra loop / generated | generated / N f64::sin_cos | generated / N libm::sincos | generated / N libm sin+cos | generated / N kinegen::math::sin_cos |");
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!("| robot | k / generated | nalgebra loop / generated | generated / N f64::sin_cos | generated / N libm::sincos | generated / N libm sin+cos | generated / N kinegen::math::sin_cos | generated / kinegen::math::sin_cos_n of N | N kinegen::math::sin_cos / sin_cos_n of N |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     paired_row("ur5", &Ur5::default(), "ur5.toml");
     paired_row("puma560", &Puma560::default(), "puma560.toml");
     paired_row("panda", &Panda::default(), "panda.toml");

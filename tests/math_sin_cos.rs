@@ -1,9 +1,10 @@
 //! `kinegen::math::sin_cos` (and `sin_cos_f32`) against `libm::sin`/`libm::cos` and the
 //! platform's `f64::sin`/`f64::cos`: random arguments, the neighbourhoods of multiples of
 //! π/2 where argument reduction cancels, the thresholds of the fast path, ±0, subnormals,
-//! huge values, NaN and ±∞. Run with `--nocapture` to see the measured differences.
+//! huge values, NaN and ±∞; the batched `sin_cos_n` the same way and against `sin_cos`.
+//! Run with `--nocapture` to see the measured differences.
 
-use kinegen::math::{sin_cos, sin_cos_f32};
+use kinegen::math::{sin_cos, sin_cos_f32, sin_cos_n};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// xorshift64*, deterministic.
@@ -271,4 +272,208 @@ fn single_precision_against_libm_and_std() {
         let (s, c) = sin_cos_f32(x);
         assert!(s.is_nan() && c.is_nan());
     }
+}
+
+/// Differences of `sin_cos_n` (lanes of `N`) from libm, from `f64::sin`/`cos` and from the
+/// scalar `sin_cos` over `xs`; asserts ≤ 1 ulp and ≤ `max_abs` from each.
+fn compare_batched<const N: usize>(label: &str, xs: impl Iterator<Item = f64>, max_abs: f64) {
+    compare_batched_quietly::<N>(label, xs, max_abs, true)
+}
+
+/// [`compare_batched`], printing the differences only if `print`.
+fn compare_batched_quietly<const N: usize>(
+    label: &str,
+    xs: impl Iterator<Item = f64>,
+    max_abs: f64,
+    print: bool,
+) {
+    let (mut libm_w, mut std_w, mut scalar_w) =
+        (Worst::default(), Worst::default(), Worst::default());
+    let mut check = |lanes: &[f64; N], len: usize| {
+        let (s, c) = sin_cos_n(*lanes);
+        for i in 0..len {
+            let x = lanes[i];
+            let (ss, sc) = sin_cos(x);
+            libm_w.add(x, s[i], libm::sin(x));
+            libm_w.add(x, c[i], libm::cos(x));
+            std_w.add(x, s[i], x.sin());
+            std_w.add(x, c[i], x.cos());
+            scalar_w.add(x, s[i], ss);
+            scalar_w.add(x, c[i], sc);
+        }
+    };
+    let mut lanes = [1.0; N];
+    let mut len = 0;
+    for x in xs {
+        lanes[len] = x;
+        len += 1;
+        if len == N {
+            check(&lanes, N);
+            len = 0;
+        }
+    }
+    if len > 0 {
+        // Unused lanes keep ordinary arguments from before: the fast path stays taken.
+        check(&lanes, len);
+    }
+    if print {
+        println!("{label} (sin_cos_n, {N} lanes): vs libm {libm_w:?}");
+        println!("{label} (sin_cos_n, {N} lanes): vs f64::sin/cos {std_w:?}");
+        println!("{label} (sin_cos_n, {N} lanes): vs sin_cos {scalar_w:?}");
+    }
+    // Each lane is `sin_cos` bit for bit: the same first reduction round, kernels and
+    // quadrant selection, and `sin_cos` itself for every lane of a call in which one
+    // lane needs more. (A reduction that loses a rounding error stays within the 1-ulp
+    // bounds below but changes ~15 % of values; one missing fdlibm's later rounds, a few
+    // hundred near multiples of π/2.)
+    assert_eq!(
+        scalar_w.bit_differences, 0,
+        "{label}: sin_cos_n differs from sin_cos in {} of {} values (first {:e})",
+        scalar_w.bit_differences, scalar_w.n, scalar_w.ulps_at
+    );
+    for (who, w) in [
+        ("libm", &libm_w),
+        ("f64::sin/cos", &std_w),
+        ("sin_cos", &scalar_w),
+    ] {
+        assert!(
+            w.ulps <= 1,
+            "{label}: sin_cos_n {} ulps from {who} at x = {:e}",
+            w.ulps,
+            w.ulps_at
+        );
+        assert!(
+            w.abs <= max_abs,
+            "{label}: sin_cos_n |Δ| = {:e} from {who} at x = {:e}",
+            w.abs,
+            w.abs_at
+        );
+    }
+}
+
+/// Random arguments for the batched tests: 10⁷ by default, `KINEGEN_TRIG_SAMPLES` to
+/// change it.
+fn samples() -> usize {
+    std::env::var("KINEGEN_TRIG_SAMPLES").map_or(10_000_000, |s| s.parse().unwrap())
+}
+
+#[test]
+fn batched_random_arguments_in_two_pi() {
+    let mut rng = Rng(0x5eed_0011);
+    let xs = (0..samples()).map(|_| (2.0 * rng.unit() - 1.0) * 2.0 * PI);
+    compare_batched::<6>("uniform [-2π, 2π]", xs, 1.2e-16);
+}
+
+#[test]
+fn batched_random_arguments_up_to_1e5() {
+    let mut rng = Rng(0x5eed_0012);
+    let xs = (0..samples()).map(|_| (2.0 * rng.unit() - 1.0) * 1e5);
+    compare_batched::<6>("uniform [-1e5, 1e5]", xs, 1.2e-16);
+}
+
+#[test]
+fn batched_random_magnitudes_and_lane_counts() {
+    // Log-uniform |x| in [1e-9, 1.6e6]: the fast path's whole range and its edges; lane
+    // counts that fill SSE registers exactly and not.
+    let xs = |seed| {
+        let mut rng = Rng(seed);
+        (0..300_000).map(move |_| {
+            let m = 10f64.powf(-9.0 + 15.2 * rng.unit());
+            if rng.next() & 1 == 0 {
+                m
+            } else {
+                -m
+            }
+        })
+    };
+    compare_batched::<1>("log-uniform |x| ≤ 1.6e6", xs(0x5eed_0013), 1.2e-16);
+    compare_batched::<2>("log-uniform |x| ≤ 1.6e6", xs(0x5eed_0014), 1.2e-16);
+    compare_batched::<5>("log-uniform |x| ≤ 1.6e6", xs(0x5eed_0015), 1.2e-16);
+    compare_batched::<7>("log-uniform |x| ≤ 1.6e6", xs(0x5eed_0016), 1.2e-16);
+}
+
+#[test]
+fn batched_near_every_multiple_of_half_pi() {
+    // k·π/2 rounded to double and its neighbours for every k of the fast path (|x| below
+    // 2²⁰·π/2): the arguments closest to multiples of π/2 there, where the first round of
+    // the reduction cancels and `sin_cos_n` must leave the lane to `sin_cos`'s further
+    // rounds. ±3 ulps for small k, ±1 beyond.
+    let xs = (1..(1i64 << 20)).flat_map(|k| {
+        let x0 = k as f64 * FRAC_PI_2;
+        let d = if k <= 64 { 3 } else { 1 };
+        (-d..=d).flat_map(move |dx| {
+            let x = f64::from_bits((x0.to_bits() as i64 + dx) as u64);
+            [x, -x]
+        })
+    });
+    compare_batched::<6>("k·π/2 ± 1 ulp, all k < 2²⁰", xs, 1.2e-16);
+}
+
+#[test]
+fn batched_thresholds_of_the_fast_path() {
+    let mut xs = Vec::new();
+    for edge in [
+        f64::from_bits(0x3e46_a09e_0000_0000),
+        f64::from_bits(0x4139_21fb_0000_0000),
+        f64::from_bits(0x4139_21fb_5444_2d18),
+        FRAC_PI_2 / 2.0,
+    ] {
+        for dx in -4i64..=4 {
+            let x = f64::from_bits((edge.to_bits() as i64 + dx) as u64);
+            xs.push(x);
+            xs.push(-x);
+        }
+    }
+    // One at a time beside ordinary lanes, and all lanes together.
+    for &x in &xs {
+        for lane in 0..6 {
+            let mut lanes = [0.5, -1.0, 2.0, -3.0, 4.0, -5.0];
+            lanes[lane] = x;
+            compare_batched_quietly::<6>("thresholds", lanes.into_iter(), 1.2e-16, false);
+        }
+    }
+    compare_batched::<6>("thresholds", xs.into_iter(), 1.2e-16);
+}
+
+#[test]
+fn batched_special_lanes_are_scalar_sin_cos_exactly() {
+    // A tiny, huge or non-finite lane sends every lane of the call through `sin_cos`:
+    // bit for bit the scalar results, signed zeros and NaN included.
+    let specials = [
+        0.0,
+        -0.0,
+        5e-324,
+        -f64::MIN_POSITIVE,
+        1e-9,
+        -1e-20,
+        1.7e6,
+        -1e22,
+        f64::MAX,
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+    for &special in &specials {
+        for lane in 0..6 {
+            let mut x = [0.5, -1.0, 2.0, -3.0, 4.0, -5.0];
+            x[lane] = special;
+            let (s, c) = sin_cos_n(x);
+            for i in 0..6 {
+                let (ss, sc) = sin_cos(x[i]);
+                assert!(
+                    same(s[i], ss) && same(c[i], sc),
+                    "lane {i} of {x:?}: ({}, {}) vs sin_cos ({ss}, {sc})",
+                    s[i],
+                    c[i]
+                );
+            }
+        }
+    }
+    let (s, _) = sin_cos_n([-0.0, 0.0]);
+    assert!(s[0].is_sign_negative() && s[1].is_sign_positive());
+    let (s, c) = sin_cos_n([f64::NAN, 1.0, f64::INFINITY]);
+    assert!(s[0].is_nan() && c[0].is_nan() && s[2].is_nan() && c[2].is_nan());
+    assert_eq!((s[1], c[1]), sin_cos(1.0));
+    assert_eq!(sin_cos_n::<0>([]), ([], []));
 }
