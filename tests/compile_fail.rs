@@ -1,5 +1,6 @@
 //! Bad `kinematics!` inputs fail to compile with a clear message under the offending
-//! entry. The expected output of each `tests/ui/*.rs` is pinned in its `.stderr`;
+//! entry; and the engine's notes are compiler warnings, pinned as errors under
+//! `#![deny(deprecated)]` in `notes_are_warnings.rs`. The expected output of each `tests/ui/*.rs` is pinned in its `.stderr`;
 //! regenerate with `TRYBUILD=overwrite cargo test --test compile_fail` and review
 //! every changed file like code.
 

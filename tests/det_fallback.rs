@@ -13,6 +13,8 @@ use kinegen_core::numeric::{self, NumericRobot};
 
 kinegen::kinematics! {
     /// A general 6R arm, fully symbolic: the closed-form determinant is out of budget.
+    // Over budget on purpose: its notes (compiler warnings) are expected.
+    #[allow(deprecated)]
     pub struct General6r;
     name: "general 6R",
     convention: standard,
@@ -92,6 +94,7 @@ d = "d6"
 
 kinegen::kinematics! {
     /// UR5 with a budget too small for any closed form.
+    #[allow(deprecated)]
     pub struct Ur5Lu = "robots/ur5.toml";
     budget: { nodes: 1 },
 }

@@ -294,8 +294,12 @@ fn identifiers(body: &Body) -> BTreeSet<String> {
 }
 
 /// The engine names the sine and cosine of a sum of consecutive joint angles after the
-/// joints (`c23`; `c1_2_3` with ten or more joints): spell out which sum.
+/// joints (`c23`; `c1_2_3` with ten or more joints), and `nc23` its negation: spell
+/// out which sum.
 fn angle_sum(name: &str) -> Option<(String, String)> {
+    if let Some((text, tex)) = name.strip_prefix('n').and_then(angle_sum) {
+        return Some((format!("-{text}"), format!("-{tex}")));
+    }
     let (f, rest) = match name.split_at(1) {
         ("s", r) => ("sin", r),
         ("c", r) => ("cos", r),
@@ -462,6 +466,7 @@ mod tests {
             r"\sin\left(q_{2} + q_{3} + q_{4}\right)"
         );
         assert_eq!(angle_sum("c1_2_3").unwrap().0, "cos(q1 + q2 + q3)");
+        assert_eq!(angle_sum("nc23").unwrap().0, "-cos(q2 + q3)");
         assert_eq!(angle_sum("c1"), None);
         assert_eq!(angle_sum("t12"), None);
         assert_eq!(angle_sum("s_k1"), None);

@@ -17,8 +17,9 @@ fn main() {
     let dt = t.elapsed();
     println!("{}", g.pretty());
     eprintln!(
-        "engine: {:.1} ms; notes: {:?}",
+        "engine: {:.1} ms; {:?}; notes: {:?}",
         dt.as_secs_f64() * 1e3,
+        g.stats,
         g.notes
     );
 }

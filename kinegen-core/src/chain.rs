@@ -9,6 +9,7 @@
 use num_traits::{One, Signed, Zero};
 
 use crate::dh::{Convention, Frame, JointKind, Robot};
+use crate::generate::Deadline;
 use crate::graph::{Graph, Id};
 use crate::poly::Var;
 use crate::value::{Rat, Value};
@@ -140,8 +141,22 @@ impl Chain {
         max_terms: usize,
         pivot: Option<usize>,
     ) -> (Chain, Option<Pivot>) {
+        Chain::with_pivot_until(robot, max_terms, pivot, Deadline::never())
+    }
+
+    /// [`Chain::with_pivot`] with a deadline: the graph drops new normal forms once it
+    /// has passed (the chain is still complete and correct, only less simplified), and
+    /// keeps it for the phases that build on the chain.
+    pub fn with_pivot_until(
+        robot: &Robot,
+        max_terms: usize,
+        pivot: Option<usize>,
+        deadline: Deadline,
+    ) -> (Chain, Option<Pivot>) {
+        let mut graph = Graph::new(Default::default(), max_terms);
+        graph.deadline = deadline;
         let mut b = Builder {
-            graph: Graph::new(Default::default(), max_terms),
+            graph,
             angles: Vec::new(),
             joint_vars: Vec::new(),
             param_vars: Vec::new(),

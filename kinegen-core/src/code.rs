@@ -2,9 +2,10 @@
 //!
 //! A function body is the set of nodes its outputs reach. Nodes used more than once
 //! get a `let` (common-subexpression sharing across all outputs of the function);
-//! nodes used once are inlined into their single user. Sines and cosines come first,
-//! one `sin_cos` per angle; intermediates whose value is the sine or cosine of a sum of
-//! joint angles are named after it (`c23`).
+//! nodes used once are inlined into their single user. Sines and cosines come first:
+//! the joint angles of an f64 robot in one `sin_cos_n` call (SIMD lanes), any other
+//! angle (and every angle of an f32 robot) with one `sin_cos` each; intermediates
+//! whose value is the sine or cosine of a sum of joint angles are named after it (`c23`).
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write;
@@ -60,6 +61,8 @@ pub struct Coder<'a> {
     chain: &'a Chain,
     /// Names of angle-sum values by normal form.
     sum_names: HashMap<Poly, String>,
+    /// Terms of the longest of them.
+    longest_sum: usize,
     scalar: Scalar,
 }
 
@@ -67,7 +70,9 @@ impl<'a> Coder<'a> {
     /// A coder for `chain`.
     pub fn new(robot: &'a Robot, chain: &'a Chain) -> Self {
         let sum_names = angle_sum_names(robot, chain);
+        let longest_sum = sum_names.keys().map(Poly::len).max().unwrap_or(0);
         Coder {
+            longest_sum,
             robot,
             chain,
             sum_names,
@@ -158,30 +163,34 @@ impl<'a> Coder<'a> {
                 body.lets.push(format!("let q{} = q[{j}];", j + 1));
             }
         }
+        // f64 joint angles: `(sine, cosine, argument)` for one batched `sin_cos_n` call,
+        // which goes where the first of them would have gone.
+        let mut batch: Vec<(String, String, String)> = Vec::new();
+        let mut batch_at = None;
         for a in &self.chain.angles {
             let (s, c) = a.vars;
             if !(used_vars.contains(&s) || used_vars.contains(&c)) {
                 continue;
             }
             let (sn, cn) = (g.ring.name(s), g.ring.name(c));
-            let pat = match (used_vars.contains(&s), used_vars.contains(&c)) {
-                (true, true) => format!("({sn}, {cn})"),
-                (true, false) => format!("({sn}, _)"),
-                _ => format!("(_, {cn})"),
-            };
+            let name = |v, n: &str| if used_vars.contains(&v) { n } else { "_" }.to_string();
+            let (sp, cp) = (name(s, sn), name(c, cn));
+            let pat = format!("({sp}, {cp})");
             let rhs = match &a.source {
                 AngleSource::Joint { joint, offset } => {
                     body.ops.trig += 1;
-                    if offset.is_zero() {
-                        format!("{}(q[{joint}])", self.sin_cos_fn())
+                    let arg = if offset.is_zero() {
+                        format!("q[{joint}]")
                     } else {
                         body.ops.add += 1;
-                        format!(
-                            "{}(q[{joint}] + {})",
-                            self.sin_cos_fn(),
-                            self.value_expr(offset)
-                        )
+                        format!("q[{joint}] + {}", self.value_expr(offset))
+                    };
+                    if self.scalar == Scalar::F64 {
+                        batch_at.get_or_insert(body.lets.len());
+                        batch.push((sp, cp, arg));
+                        continue;
                     }
+                    format!("{}({arg})", self.sin_cos_fn())
                 }
                 AngleSource::Constant(v) if v.is_constant() => {
                     let x = self.robot.eval(v);
@@ -193,6 +202,9 @@ impl<'a> Coder<'a> {
                 }
             };
             body.lets.push(format!("let {pat} = {rhs};"));
+        }
+        if let Some(at) = batch_at {
+            body.lets.insert(at, batched_sin_cos(&batch));
         }
         // Shared intermediates; also long single-use chains (a sum of many terms),
         // cut every few levels so lines stay readable and emission stays shallow.
@@ -225,7 +237,15 @@ impl<'a> Coder<'a> {
             let (expr, _) = self.expr(id, &names, &mut body.ops);
             let name = g
                 .nf(id)
-                .and_then(|p| self.sum_names.get(p).cloned())
+                // Angle sums are small: don't hash the big normal forms.
+                .filter(|p| p.len() <= self.longest_sum)
+                .and_then(|p| {
+                    // The sign pass may compute −c234 instead: `nc234`.
+                    self.sum_names
+                        .get(p)
+                        .cloned()
+                        .or_else(|| self.sum_names.get(&p.neg()).map(|n| format!("n{n}")))
+                })
                 .filter(|n| !names.values().any(|m| m == n))
                 .unwrap_or_else(|| {
                     temp += 1;
@@ -242,6 +262,7 @@ impl<'a> Coder<'a> {
         body
     }
 
+    /// The scalar `sin_cos` of the robot's float type.
     fn sin_cos_fn(&self) -> &'static str {
         match self.scalar {
             Scalar::F64 => "::kinegen::math::sin_cos",
@@ -316,6 +337,32 @@ impl<'a> Coder<'a> {
     }
 }
 
+/// One `let` for the sines and cosines of several f64 angles `(sine name or _, cosine
+/// name or _, argument)`: `kinegen::math::sin_cos_n`, whose lanes are `sin_cos` bit for
+/// bit and share SIMD registers; a lone angle keeps the scalar `sin_cos`.
+fn batched_sin_cos(batch: &[(String, String, String)]) -> String {
+    if let [(s, c, arg)] = batch {
+        return format!("let ({s}, {c}) = ::kinegen::math::sin_cos({arg});");
+    }
+    let side = |names: Vec<&str>| {
+        if names.iter().all(|n| *n == "_") {
+            "_".to_string()
+        } else {
+            format!("[{}]", names.join(", "))
+        }
+    };
+    format!(
+        "let ({}, {}) = ::kinegen::math::sin_cos_n([{}]);",
+        side(batch.iter().map(|b| b.0.as_str()).collect()),
+        side(batch.iter().map(|b| b.1.as_str()).collect()),
+        batch
+            .iter()
+            .map(|b| b.2.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
 /// The children of a node.
 pub fn children(n: &Node) -> Vec<Id> {
     match n {
@@ -325,8 +372,11 @@ pub fn children(n: &Node) -> Vec<Id> {
     }
 }
 
+/// Largest expansion of an angle sum given a name (sums of up to 8 angles).
+const MAX_NAMED_SUM_TERMS: usize = 128;
+
 /// Normal forms of sin/cos of sums of consecutive revolute joint angles → `s23`, `c23`.
-fn angle_sum_names(robot: &Robot, chain: &Chain) -> HashMap<Poly, String> {
+pub(crate) fn angle_sum_names(robot: &Robot, chain: &Chain) -> HashMap<Poly, String> {
     let g = &chain.graph;
     let ring = &g.ring;
     let joint_angle: Vec<Option<(Poly, Poly)>> = robot
@@ -353,6 +403,11 @@ fn angle_sum_names(robot: &Robot, chain: &Chain) -> HashMap<Poly, String> {
         let mut label = format!("{}", start + 1);
         for (k, next) in joint_angle.iter().enumerate().skip(start + 1) {
             let Some((s2, c2)) = next else { break };
+            // sin/cos of a sum of k angles has 2^(k−1) terms: past a few joints the
+            // expansion costs more than a name is worth (and grows without bound).
+            if s.len() >= MAX_NAMED_SUM_TERMS {
+                break;
+            }
             let ns = ring.mul(&s, c2).add(&ring.mul(&c, s2));
             let nc = ring.mul(&c, c2).sub(&ring.mul(&s, s2));
             s = ns;

@@ -98,6 +98,8 @@ pub enum DetError {
     NotSquare,
     /// Expressions grew past the term budget.
     TooLarge,
+    /// The engine's deadline ([`crate::generate::Deadline`]) passed first.
+    Deadline,
 }
 
 /// Largest frame entry (terms) a determinant is built from: products of larger ones
@@ -124,10 +126,16 @@ pub fn square_rows(robot: &Robot) -> Option<Vec<usize>> {
 /// For the full 6×6 Jacobian every frame and every joint-frame origin as reference point
 /// is tried; for a task Jacobian only frames (its linear rows depend on the point), and
 /// only frames that rotate about world z when the task has rows other than all six.
+///
+/// Once the deadline of the chain's graph has passed it gives up with
+/// [`DetError::Deadline`] (the caller then emits a numeric determinant).
 pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<Factored, DetError> {
     let n = robot.dof();
     if rows.len() != n {
         return Err(DetError::NotSquare);
+    }
+    if chain.graph.past_deadline() {
+        return Err(DetError::Deadline);
     }
     let full = rows.len() == 6;
     let mut points: Vec<[Id; 3]> = vec![chain.tool.p];
@@ -166,6 +174,9 @@ pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<F
     let mut candidates: Vec<Scored> = Vec::new();
     for point in &points {
         for cols in &frames {
+            if chain.graph.past_deadline() {
+                return Err(DetError::Deadline);
+            }
             // Entries past the determinant's budget cannot give a small closed form:
             // cap the normal forms while building the matrix so they stop early.
             let saved = chain.graph.max_terms;
@@ -185,14 +196,21 @@ pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<F
         for (_, m) in candidates {
             let mut memo = HashMap::new();
             let all_rows: u32 = (1 << n) - 1;
+            let deadline = chain.graph.deadline;
             let r = det_rec(
-                &chain.graph.ring,
+                &Limits {
+                    ring: &chain.graph.ring,
+                    max_terms,
+                    deadline: &deadline,
+                },
                 &m,
                 all_rows,
                 all_rows,
-                max_terms,
                 &mut memo,
             );
+            if chain.graph.past_deadline() {
+                return Err(DetError::Deadline);
+            }
             let Ok(mut f) = r else {
                 continue;
             };
@@ -215,7 +233,11 @@ pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<F
             }
         }
     }
-    best.map(|(f, _)| f).ok_or(DetError::TooLarge)
+    match best {
+        Some((f, _)) => Ok(f),
+        None if chain.graph.past_deadline() => Err(DetError::Deadline),
+        None => Err(DetError::TooLarge),
+    }
 }
 
 fn identity_cols(chain: &mut Chain) -> [[Id; 3]; 3] {
@@ -275,13 +297,21 @@ fn matrix(
 
 type Memo = HashMap<(u32, u32), Factored>;
 
+/// What bounds a Laplace expansion.
+struct Limits<'a> {
+    ring: &'a Ring,
+    /// Largest intermediate (terms).
+    max_terms: usize,
+    /// Past it, give up (the caller reports [`DetError::Deadline`]).
+    deadline: &'a crate::generate::Deadline,
+}
+
 /// Determinant of the submatrix on `rows` × `cols` (bit sets), factored.
 fn det_rec(
-    ring: &Ring,
+    lim: &Limits,
     m: &[Vec<Poly>],
     rows: u32,
     cols: u32,
-    max_terms: usize,
     memo: &mut Memo,
 ) -> Result<Factored, TooLarge> {
     if rows == 0 {
@@ -290,6 +320,10 @@ fn det_rec(
     if let Some(f) = memo.get(&(rows, cols)) {
         return Ok(f.clone());
     }
+    if lim.deadline.passed() {
+        return Err(TooLarge);
+    }
+    let (ring, max_terms) = (lim.ring, lim.max_terms);
     let ri: Vec<usize> = bits(rows);
     let ci: Vec<usize> = bits(cols);
     // The line (row or column) with the fewest nonzeros.
@@ -326,7 +360,7 @@ fn det_rec(
             if e.is_zero() {
                 continue;
             }
-            let minor = det_rec(ring, m, rows & !(1 << r), cols & !(1 << c), max_terms, memo)?;
+            let minor = det_rec(lim, m, rows & !(1 << r), cols & !(1 << c), memo)?;
             if minor.is_zero() {
                 continue;
             }

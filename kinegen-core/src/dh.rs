@@ -291,8 +291,13 @@ fn is_rust_keyword(s: &str) -> bool {
     KEYWORDS.contains(&s)
 }
 
-/// Names the generated code binds itself: `s1`, `c1`, `c23`, `s1_2`, `s_k1`, `t4`.
+/// Names the generated code binds itself: `s1`, `c1`, `c23`, `nc23` (−c23), `s1_2`,
+/// `s_k1`, `t4`.
 fn is_generated_local(s: &str) -> bool {
+    let s = s
+        .strip_prefix('n')
+        .filter(|r| r.starts_with(['s', 'c']))
+        .unwrap_or(s);
     let Some(rest) = s.strip_prefix(['s', 'c', 't']) else {
         return false;
     };
@@ -437,7 +442,7 @@ impl Validator {
                 self.err(
                     p.clone(),
                     format!(
-                        "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23` angle \
+                        "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23`/`nc23` angle \
                          sums, `t4` intermediates); choose another parameter name"
                     ),
                 );

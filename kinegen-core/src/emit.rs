@@ -5,13 +5,18 @@ use std::fmt::Write;
 
 use crate::code::{Body, Coder, OpCount};
 use crate::dh::{Robot, Scalar};
-use crate::generate::{Generated, ItemHeader, Options};
+use crate::generate::{Deadline, Generated, ItemHeader, Options};
 use crate::graph::Id;
 use crate::model::Model;
 use crate::value::fmt_rat;
 
-pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Generated {
-    let mut model = Model::build(robot, options);
+pub(crate) fn emit(
+    robot: &Robot,
+    header: &ItemHeader,
+    options: &Options,
+    deadline: Deadline,
+) -> Generated {
+    let mut model = Model::build_until(robot, options, deadline);
     let det = crate::det::square_rows(robot).map(|_| model.determinant(robot));
     let coder = Coder::new(robot, &model.chain);
     let n = robot.dof();
@@ -128,9 +133,7 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
     });
 
     // fk_and_jacobian: one body, everything shared.
-    let mut both = fk_ids.clone();
-    both.extend(&jac_ids);
-    let body = coder.body(&both);
+    let body = coder.body(&model.fused);
     let doc = format!(
         "Tool pose and world-frame Jacobian together, sharing their common subexpressions \
          ({} operations, {} `sin_cos`; see [`Self::fk`] and [`Self::jacobian`] for the formulas).",
@@ -347,13 +350,6 @@ pub(crate) fn emit(robot: &Robot, header: &ItemHeader, options: &Options) -> Gen
         }
     }
 
-    notes.push(format!(
-        "fk: {} ops ({} sin_cos); jacobian: {} ops ({} sin_cos)",
-        fk_ops.total(),
-        fk_ops.trig,
-        jac_ops.total(),
-        jac_ops.trig
-    ));
     let tokens = match syn::parse_str::<syn::File>(&items) {
         Ok(file) => quote::quote!(#file),
         Err(e) => {
@@ -521,8 +517,12 @@ fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
     s
 }
 
-/// `c23` → `cos(q2+q3)`, `s1_2` → `sin(q1+q2)`: what an angle-sum name means.
+/// `c23` → `cos(q2+q3)`, `s1_2` → `sin(q1+q2)`, `nc23` → `−cos(q2+q3)`: what an
+/// angle-sum name means.
 fn angle_sum_meaning(name: &str) -> Option<String> {
+    if let Some(m) = name.strip_prefix('n').and_then(angle_sum_meaning) {
+        return Some(format!("−{m}"));
+    }
     let f = match name.chars().next()? {
         's' => "sin",
         'c' => "cos",

@@ -4,13 +4,14 @@
 //! shared structurally; in addition, while the normal forms stay under a term budget,
 //! a node whose value equals (or is the negation of) an existing node's value *is* that
 //! node: value numbering modulo `s² + c² = 1`. Exact zeros vanish, equal entries are
-//! computed once. Past the budget a node simply has no normal form and is shared only
-//! structurally — always correct, just less simplified.
+//! computed once. Past the budget (or past the engine's deadline) a node simply has no
+//! normal form and is shared only structurally — always correct, just less simplified.
 
 use std::collections::HashMap;
 
 use num_traits::{One, Signed, Zero};
 
+use crate::generate::Deadline;
 use crate::poly::{Poly, Ring, Var};
 use crate::value::Rat;
 
@@ -49,6 +50,12 @@ pub struct Graph {
     pub max_terms: usize,
     /// Normal forms dropped for size.
     pub nf_overflows: usize,
+    /// Past it, new normal forms are dropped (as if over [`Graph::max_terms`]).
+    pub deadline: Deadline,
+    /// Normal forms dropped because the deadline had passed.
+    pub nf_timeouts: usize,
+    /// Set once the deadline is seen passed: no clock reads after that.
+    past_deadline: bool,
 }
 
 impl Default for Graph {
@@ -69,7 +76,18 @@ impl Graph {
             by_nf: HashMap::new(),
             max_terms,
             nf_overflows: 0,
+            deadline: Deadline::never(),
+            nf_timeouts: 0,
+            past_deadline: false,
         }
+    }
+
+    /// Whether the deadline has passed (once it has, without reading the clock again).
+    pub fn past_deadline(&mut self) -> bool {
+        if !self.past_deadline && self.deadline.passed() {
+            self.past_deadline = true;
+        }
+        self.past_deadline
     }
 
     /// The node with id `id`.
@@ -98,6 +116,25 @@ impl Graph {
             Node::Num(r) => Some(r),
             _ => None,
         }
+    }
+
+    /// Add `node` as it is (no folding, no value numbering), its normal form given by
+    /// `nf` if the node is new: for passes that rewrite the graph's shape and carry
+    /// the values over. The node does not become its value's representative (value
+    /// numbering keeps finding the node it found before), which also spares hashing
+    /// the normal form.
+    pub(crate) fn intern_node(&mut self, node: Node, nf: impl FnOnce(&Self) -> Option<Poly>) -> Id {
+        if let Some(&id) = self.memo.get(&node) {
+            return id;
+        }
+        let nf = nf(self);
+        let id = self.nodes.len() as Id;
+        let cost = self.tree_cost(&node);
+        self.nodes.push(node.clone());
+        self.memo.insert(node, id);
+        self.nf.push(nf);
+        self.cost.push(cost);
+        id
     }
 
     fn intern(&mut self, node: Node, nf: Option<Poly>) -> Id {
@@ -179,6 +216,13 @@ impl Graph {
         b: Id,
         f: impl Fn(&Ring, &Poly, &Poly, usize) -> Option<Poly>,
     ) -> Option<Poly> {
+        self.nf[a as usize].as_ref()?;
+        self.nf[b as usize].as_ref()?;
+        // Past the deadline: structural sharing only, which is always correct.
+        if self.past_deadline() {
+            self.nf_timeouts += 1;
+            return None;
+        }
         let (pa, pb) = (self.nf[a as usize].as_ref()?, self.nf[b as usize].as_ref()?);
         let p = f(&self.ring, pa, pb, self.max_terms);
         match p {
@@ -303,92 +347,6 @@ impl Graph {
         let (a, b) = (a.min(b), a.max(b));
         let nf = self.nf2(a, b, |ring, x, y, max| ring.mul_bounded(x, y, max).ok());
         self.make(Node::Mul(a, b), nf)
-    }
-
-    /// The same values with negations moved onto leaves: `−(c1·x)` becomes `(−c1)·x`,
-    /// so that one `−c1` serves every product it appears in, and `−(a − b)` becomes
-    /// `b − a`. Construction keeps signs outside products (that is what lets value
-    /// numbering see `−x` as `x`); emission wants them inside. Returns the new ids of
-    /// `outputs`; normal forms are carried over, so checks still apply.
-    pub fn signs_inward(&mut self, outputs: &[Id]) -> Vec<Id> {
-        // Uses of each reachable node: a shared product or difference stays as it is.
-        let mut uses: HashMap<Id, usize> = HashMap::new();
-        let mut stack = outputs.to_vec();
-        let mut seen = std::collections::HashSet::new();
-        while let Some(id) = stack.pop() {
-            if !seen.insert(id) {
-                continue;
-            }
-            for c in crate::code::children(&self.nodes[id as usize]) {
-                *uses.entry(c).or_default() += 1;
-                stack.push(c);
-            }
-        }
-        let mut memo = HashMap::new();
-        outputs
-            .iter()
-            .map(|&o| self.inward(o, &uses, &mut memo))
-            .collect()
-    }
-
-    fn inward(&mut self, id: Id, uses: &HashMap<Id, usize>, memo: &mut HashMap<Id, Id>) -> Id {
-        if let Some(&x) = memo.get(&id) {
-            return x;
-        }
-        let nf = self.nf[id as usize].clone();
-        let out = match self.nodes[id as usize].clone() {
-            Node::Num(_) | Node::Leaf(_) => id,
-            Node::Neg(x) if uses.get(&x).copied().unwrap_or(0) > 1 => {
-                let x = self.inward(x, uses, memo);
-                self.intern(Node::Neg(x), nf)
-            }
-            Node::Neg(x) => match self.nodes[x as usize].clone() {
-                Node::Mul(a, b) => {
-                    let leaf = |g: &Self, i: Id| matches!(g.nodes[i as usize], Node::Leaf(_));
-                    let (l, r) = if leaf(self, a) {
-                        (Some(a), b)
-                    } else if leaf(self, b) {
-                        (Some(b), a)
-                    } else {
-                        (None, x)
-                    };
-                    match l {
-                        Some(l) => {
-                            let nl = self.neg(l);
-                            let r = self.inward(r, uses, memo);
-                            let (p, q) = (nl.min(r), nl.max(r));
-                            self.intern(Node::Mul(p, q), nf)
-                        }
-                        None => {
-                            let x = self.inward(x, uses, memo);
-                            self.intern(Node::Neg(x), nf)
-                        }
-                    }
-                }
-                Node::Sub(a, b) => {
-                    let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
-                    self.intern(Node::Sub(b, a), nf)
-                }
-                _ => {
-                    let x = self.inward(x, uses, memo);
-                    self.intern(Node::Neg(x), nf)
-                }
-            },
-            Node::Add(a, b) => {
-                let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
-                self.intern(Node::Add(a.min(b), a.max(b)), nf)
-            }
-            Node::Sub(a, b) => {
-                let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
-                self.intern(Node::Sub(a, b), nf)
-            }
-            Node::Mul(a, b) => {
-                let (a, b) = (self.inward(a, uses, memo), self.inward(b, uses, memo));
-                self.intern(Node::Mul(a.min(b), a.max(b)), nf)
-            }
-        };
-        memo.insert(id, out);
-        out
     }
 
     /// `Σ xᵢ` (0 for none).
@@ -531,6 +489,27 @@ mod tests {
         let m1 = g.int(1);
         let x = g.sub(cc, m1);
         assert_eq!(g.node(x), &Node::Neg(ss));
+    }
+
+    #[test]
+    fn past_the_deadline_nodes_are_shared_structurally_only() {
+        let mut g = Graph::default();
+        let (s, c) = g.ring.angle(0, "1");
+        let (s, c) = (g.leaf(s), g.leaf(c));
+        g.deadline = Deadline::after_ms(0);
+        let ss = g.mul(s, s);
+        let cc = g.mul(c, c);
+        let one = g.add(ss, cc);
+        // s² + c² is no longer seen to be 1: a node without normal form, still correct.
+        assert!(g.nf(one).is_none() && g.as_num(one).is_none());
+        // Two products dropped theirs; the sum has operands without one.
+        assert_eq!(g.nf_timeouts, 2);
+        assert_eq!(g.nf_overflows, 0);
+        let x = 0.3f64;
+        let v = g.eval(one, &|v| if v == 0 { x.sin() } else { x.cos() });
+        assert!((v - 1.0).abs() < 1e-15);
+        // Structural sharing still applies.
+        assert_eq!(g.mul(s, s), ss);
     }
 
     #[test]

@@ -234,8 +234,18 @@ const GREEK: &[&str] = &[
 
 /// A variable name in textbook notation: `c23` → `c_{23}`, `L1` → `L_{1}`,
 /// `s_k1` → `s_{k1}`, `c1_2` → `c_{1,2}` (angle sums of robots with ten or more joints),
-/// `alpha2` → `\alpha_{2}`, `d_bs` → `d_{bs}`, `q` → `q`.
+/// `alpha2` → `\alpha_{2}`, `d_bs` → `d_{bs}`, `q` → `q`, and the negated angle sums
+/// of generated code `nc23` → `\bar{c}_{23}` (= −c₂₃).
 pub fn latex_name(name: &str) -> String {
+    if let Some(rest) = name.strip_prefix('n') {
+        let sum = rest.len() >= 3
+            && rest.starts_with(['s', 'c'])
+            && rest[1..].chars().all(|c| c.is_ascii_digit() || c == '_');
+        if sum {
+            let plain = latex_name(rest);
+            return format!(r"\bar{{{}}}{}", &plain[..1], &plain[1..]);
+        }
+    }
     // Base: the leading letters; subscript: the rest, without a leading `_`, with
     // further `_` as separators.
     let cut = name
@@ -354,6 +364,9 @@ mod tests {
     fn names_take_textbook_subscripts() {
         assert_eq!(latex_name("s1"), "s_{1}");
         assert_eq!(latex_name("c23"), "c_{23}");
+        assert_eq!(latex_name("nc23"), r"\bar{c}_{23}");
+        assert_eq!(latex_name("ns1_2"), r"\bar{s}_{1,2}");
+        assert_eq!(latex_name("nu2"), r"\nu_{2}");
         assert_eq!(latex_name("t4"), "t_{4}");
         assert_eq!(latex_name("a2"), "a_{2}");
         assert_eq!(latex_name("L1"), "L_{1}");

@@ -17,6 +17,7 @@ pub mod model;
 pub mod numeric;
 pub mod polish;
 pub mod poly;
+pub mod signs;
 pub mod toml_input;
 pub mod trig;
 pub mod value;

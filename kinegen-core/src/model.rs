@@ -2,7 +2,7 @@
 
 use crate::chain::{Chain, Transform};
 use crate::dh::Robot;
-use crate::generate::Options;
+use crate::generate::{Deadline, Options};
 use crate::graph::Id;
 use crate::jacobian::{self, Rows};
 
@@ -21,6 +21,10 @@ pub struct Model {
     pub jacobian_ee: Rows,
     /// Task Jacobian rows (empty without task rows).
     pub task: Rows,
+    /// The tool pose's 12 entries then the Jacobian's, row-major, for the fused
+    /// `fk_and_jacobian` (same values as `fk_rows` and `jacobian`; signs chosen for the
+    /// two together).
+    pub fused: Vec<Id>,
     /// Notes for the user (budgets hit, fallbacks).
     pub notes: Vec<String>,
     /// What the e-graph polish changed and rejected.
@@ -47,7 +51,16 @@ impl Model {
     /// [`crate::chain::Pivot`]); the variant whose `fk` and `jacobian` take the fewest
     /// operations after sharing wins (ties: the plain chain, then the smaller `k`).
     /// All variants compute the same values — they are different evaluation orders.
+    ///
+    /// `options.budget.time_ms` counts from here (see [`Model::build_until`]).
     pub fn build(robot: &Robot, options: &Options) -> Model {
+        Model::build_until(robot, options, Deadline::start(&options.budget))
+    }
+
+    /// [`Model::build`] within a deadline: past it no further variant is tried and the
+    /// chain keeps no new normal forms (correct, less simplified code), with a note. The
+    /// model keeps the deadline for [`Model::determinant`].
+    pub fn build_until(robot: &Robot, options: &Options, deadline: Deadline) -> Model {
         let n = robot.dof();
         let mut best: Option<(usize, Model)> = None;
         // Candidates: none, frame 1 (a vertical first axis drops out of everything),
@@ -56,8 +69,17 @@ impl Model {
         if n > 2 {
             candidates.push(Some(n - 1));
         }
-        for pivot in candidates {
-            let model = Model::build_with(robot, options, pivot);
+        let total = candidates.len();
+        for (tried, pivot) in candidates.into_iter().enumerate() {
+            if let Some((_, m)) = best.as_mut().filter(|_| deadline.passed()) {
+                m.notes.push(format!(
+                    "{} ran out while comparing evaluation orders (middle frames): \
+                     kept the best of {tried} of {total}",
+                    deadline.describe()
+                ));
+                break;
+            }
+            let model = Model::build_with_until(robot, options, pivot, deadline);
             let cost = model.cost(robot);
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
                 best = Some((cost, model));
@@ -79,7 +101,18 @@ impl Model {
 
     /// Build the chain and all outputs with the given middle frame (`None`: none).
     pub fn build_with(robot: &Robot, options: &Options, pivot: Option<usize>) -> Model {
-        let (mut chain, pivot) = Chain::with_pivot(robot, options.budget.max_terms(), pivot);
+        Model::build_with_until(robot, options, pivot, Deadline::start(&options.budget))
+    }
+
+    /// [`Model::build_with`] within a deadline (see [`Model::build_until`]).
+    pub fn build_with_until(
+        robot: &Robot,
+        options: &Options,
+        pivot: Option<usize>,
+        deadline: Deadline,
+    ) -> Model {
+        let (mut chain, pivot) =
+            Chain::with_pivot_until(robot, options.budget.max_terms(), pivot, deadline);
         let fk_rows = rows(&chain.tool);
         let frame_rows: Vec<[[Id; 4]; 3]> = chain.frames.iter().map(rows).collect();
         let jacobian = jacobian::geometric(robot, &mut chain, pivot.as_ref());
@@ -108,35 +141,60 @@ impl Model {
         );
         let out = out.with_ids(ids);
         let mut notes = polish.notes.clone();
-        // Signs onto leaves, per output group; the pass copies normal forms instead of
-        // recomputing them, so check it by value.
+        // Signs chosen for the fewest negations (`signs`), once per generated function:
+        // a node the function would compute with both signs would be computed twice,
+        // so `frames` is one problem and the fused `fk_and_jacobian` has its own. The
+        // pass copies normal forms instead of recomputing them, so check it by value.
         let g = &mut chain.graph;
-        let inward = Outputs {
-            fk: inward_rows(g, &out.fk),
-            frames: out.frames.iter().map(|r| inward_rows(g, r)).collect(),
-            jacobian: inward_matrix(g, &out.jacobian),
-            jacobian_ee: inward_matrix(g, &out.jacobian_ee),
-            task: inward_matrix(g, &out.task),
-        };
+        let flat = |r: &[[Id; 4]; 3]| r.iter().flatten().copied().collect::<Vec<Id>>();
+        let frames: Vec<Id> = out.frames.iter().flat_map(flat).collect();
+        let matrix = |m: &Rows| m.iter().flatten().copied().collect::<Vec<Id>>();
+        let mut signed = Vec::new();
+        for group in [
+            flat(&out.fk),
+            frames,
+            matrix(&out.jacobian),
+            matrix(&out.jacobian_ee),
+            matrix(&out.task),
+        ] {
+            signed.extend(crate::signs::assign(g, &group));
+        }
+        let inward = out.with_ids(signed);
+        let fused_before: Vec<Id> = flat(&out.fk)
+            .into_iter()
+            .chain(matrix(&out.jacobian))
+            .collect();
+        let fused_after = crate::signs::assign(g, &fused_before);
         let probe = crate::polish::Probe::new(&chain);
         let bad = out
             .ids()
             .into_iter()
-            .zip(inward.ids())
+            .chain(fused_before.iter().copied())
+            .zip(inward.ids().into_iter().chain(fused_after.iter().copied()))
             .any(|(b, a)| a != b && !probe.same_values(&chain.graph, a, b));
-        let out = if bad {
+        let (out, fused) = if bad {
             notes.push(
                 "internal check failed after moving signs: the unsimplified expressions are emitted"
                     .into(),
             );
-            out
+            (out, fused_before)
         } else {
-            inward
+            (inward, fused_after)
         };
-        if chain.graph.nf_overflows > 0 {
+        // Outputs whose expression reached a node without normal form have none.
+        let lost = out.without_normal_form(&chain.graph);
+        let g = &chain.graph;
+        if g.nf_overflows > 0 {
             notes.push(format!(
-                "{} expressions exceeded the normal-form budget of {} terms: they are shared structurally only",
-                chain.graph.nf_overflows, chain.graph.max_terms
+                "{} expressions exceeded the normal-form budget of {} terms: they are shared structurally only{lost}",
+                g.nf_overflows, g.max_terms
+            ));
+        }
+        if g.nf_timeouts > 0 {
+            notes.push(format!(
+                "{} ran out while building normal forms: {} were not computed, and what is built on them is shared structurally only{lost}",
+                g.deadline.describe(),
+                g.nf_timeouts
             ));
         }
         Model {
@@ -146,6 +204,7 @@ impl Model {
             jacobian: out.jacobian,
             jacobian_ee: out.jacobian_ee,
             task: out.task,
+            fused,
             notes,
             polish,
         }
@@ -162,6 +221,50 @@ struct Outputs {
 }
 
 impl Outputs {
+    /// ` (outputs without a normal form: `fk[0][3]`, `jacobian[2][4]`, …)`, or nothing.
+    fn without_normal_form(&self, g: &crate::graph::Graph) -> String {
+        const SHOWN: usize = 6;
+        let lost: Vec<String> = self
+            .names()
+            .into_iter()
+            .zip(self.ids())
+            .filter(|&(_, id)| g.nf(id).is_none())
+            .map(|(name, _)| name)
+            .collect();
+        match lost.len() {
+            0 => String::new(),
+            k if k <= SHOWN => format!(" (outputs without a normal form: {})", lost.join(", ")),
+            k => format!(
+                " (outputs without a normal form: {}, … {k} in all)",
+                lost[..SHOWN].join(", ")
+            ),
+        }
+    }
+
+    /// The name of every id, in the order of [`Outputs::ids`]: `fk[0][3]`,
+    /// `frames[2][1][3]`, `jacobian[2][4]`, `jacobian_ee[0][0]`, `task_jacobian[1][2]`.
+    fn names(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        let mut rows = |name: &str, m: &mut dyn Iterator<Item = (usize, usize)>| {
+            v.extend(m.map(|(r, c)| format!("`{name}[{r}][{c}]`")));
+        };
+        let cells =
+            |rows: usize, cols: usize| (0..rows).flat_map(move |r| (0..cols).map(move |c| (r, c)));
+        rows("fk", &mut cells(3, 4));
+        for i in 0..self.frames.len() {
+            rows(&format!("frames[{i}]"), &mut cells(3, 4));
+        }
+        for (name, m) in [
+            ("jacobian", &self.jacobian),
+            ("jacobian_ee", &self.jacobian_ee),
+            ("task_jacobian", &self.task),
+        ] {
+            let w = m.first().map_or(0, Vec::len);
+            rows(name, &mut cells(m.len(), w));
+        }
+        v
+    }
+
     /// Every id: fk, frames, jacobian, jacobian_ee, task, row-major.
     fn ids(&self) -> Vec<Id> {
         let mut v: Vec<Id> = self.fk.iter().flatten().copied().collect();
@@ -198,23 +301,6 @@ impl Outputs {
             task,
         }
     }
-}
-
-fn inward_rows(g: &mut crate::graph::Graph, r: &[[Id; 4]; 3]) -> [[Id; 4]; 3] {
-    let ids: Vec<Id> = r.iter().flatten().copied().collect();
-    let out = g.signs_inward(&ids);
-    let mut r2 = [[0; 4]; 3];
-    for (k, id) in out.into_iter().enumerate() {
-        r2[k / 4][k % 4] = id;
-    }
-    r2
-}
-
-fn inward_matrix(g: &mut crate::graph::Graph, m: &Rows) -> Rows {
-    let ids: Vec<Id> = m.iter().flatten().copied().collect();
-    let out = g.signs_inward(&ids);
-    let w = m.first().map_or(0, Vec::len).max(1);
-    out.chunks(w).map(<[Id]>::to_vec).collect()
 }
 
 /// Past the normal-form budget the variants are not worth comparing: stop trying.
@@ -299,15 +385,25 @@ pub struct DetFactor {
 
 impl Model {
     /// The determinant of the square (task) Jacobian, if there is one and it is
-    /// within budget; `Err` with the reason otherwise.
+    /// within budget (terms, and the deadline the model was built with); `Err` with
+    /// the reason otherwise.
     pub fn determinant(&mut self, robot: &Robot) -> Result<DetModel, String> {
         use crate::det;
         use crate::poly::VarKind;
         use crate::trig;
         use num_traits::Signed;
         let rows = det::square_rows(robot).ok_or("the Jacobian is not square")?;
-        let factored = det::determinant(robot, &mut self.chain, &rows)
-            .map_err(|e| format!("closed-form determinant over budget ({e:?})"))?;
+        let deadline = self.chain.graph.deadline;
+        let late = || {
+            format!(
+                "{} ran out before the closed-form determinant was done",
+                deadline.describe()
+            )
+        };
+        let factored = det::determinant(robot, &mut self.chain, &rows).map_err(|e| match e {
+            det::DetError::Deadline => late(),
+            e => format!("closed-form determinant over budget ({e:?})"),
+        })?;
         let size: usize = factored.factors.iter().map(|f| f.len()).sum();
         if size > MAX_FACTOR_TERMS {
             return Err(format!(
@@ -397,6 +493,10 @@ impl Model {
             for _ in 0..f.power {
                 node = g.mul(node, f.node);
             }
+        }
+        // Past the deadline the product's nodes may have no normal form to check.
+        if g.past_deadline() {
+            return Err(late());
         }
         // Check: the emitted product equals the determinant's normal form.
         if let (Some(nf), Ok(expanded)) = (g.nf(node), factored.expand(&g.ring, g.max_terms)) {

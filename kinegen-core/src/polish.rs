@@ -6,7 +6,9 @@
 //! `−(a − b)` → `b − a`, `a + (−b)` → `a − b` — that depend on how terms happen to
 //! line up. Each expression the generated code writes inline (everything between two
 //! `let`s) goes through [`egg`] with these rules, bounded by the [`Budget`]'s node
-//! and iteration limits; the cheapest form found replaces the original only if
+//! and iteration limits and by the time left before the engine's deadline (past it,
+//! the remaining expressions are kept as they are, with a note); the cheapest form
+//! found replaces the original only if
 //!
 //! - it is cheaper, and
 //! - **the check passes**: its exact normal form equals the original's (when both
@@ -93,6 +95,8 @@ pub struct Report {
     pub saved: usize,
     /// Cheaper forms rejected by the check (a rule is wrong: the original is kept).
     pub rejected: usize,
+    /// Expressions left as they were because the engine's deadline had passed.
+    pub timed_out: usize,
     /// Notes for the user.
     pub notes: Vec<String>,
 }
@@ -170,10 +174,21 @@ pub fn polish(
         if size < 2 {
             continue;
         }
+        // Past the engine's deadline the remaining expressions stay as they are (their
+        // operands are still remapped above, which is cheap).
+        if g.past_deadline() {
+            report.timed_out += 1;
+            continue;
+        }
+        // The time left of the engine's budget, not a full budget per run.
+        let time = g
+            .deadline
+            .remaining()
+            .min(std::time::Duration::from_millis(budget.time_ms.max(1)));
         let runner = Runner::default()
             .with_node_limit(budget.nodes.max(1))
             .with_iter_limit(budget.iterations.max(1))
-            .with_time_limit(std::time::Duration::from_millis(budget.time_ms.max(1)))
+            .with_time_limit(time)
             .with_expr(&expr)
             .run(&rules);
         let extractor = egg::Extractor::new(&runner.egraph, OpCost);
@@ -192,6 +207,14 @@ pub fn polish(
                 report.rejected += 1;
             }
         }
+    }
+    if report.timed_out > 0 {
+        report.notes.push(format!(
+            "{} ran out during the e-graph polish: {} expressions were left unpolished \
+             (correct, less simplified)",
+            g.deadline.describe(),
+            report.timed_out
+        ));
     }
     if report.rejected > 0 {
         report.notes.push(format!(
@@ -379,6 +402,27 @@ mod tests {
         assert_eq!(report.rejected, 1, "{report:?}");
         assert_eq!(out[0], e, "the unsimplified expression is kept");
         assert!(report.notes.iter().any(|n| n.contains("failed the check")));
+    }
+
+    #[test]
+    fn past_the_deadline_expressions_are_kept_with_a_note() {
+        let mut c = chain();
+        let (a, b, d) = leaves(&mut c);
+        let ab = c.graph.mul(a, b);
+        let ad = c.graph.mul(a, d);
+        let e = c.graph.add(ab, ad);
+        c.graph.deadline = crate::generate::Deadline::after_ms(0);
+        let mut report = Report::default();
+        let out = polish(&mut c, &[e], &Budget::default(), &[], &mut report);
+        assert_eq!((report.improved, report.timed_out), (0, 1), "{report:?}");
+        assert_eq!(out[0], e, "the expression is kept as it was");
+        assert!(
+            report
+                .notes
+                .iter()
+                .any(|n| n.contains("during the e-graph polish")),
+            "{report:?}"
+        );
     }
 
     #[test]

@@ -47,6 +47,7 @@ fn parameters_named_like_generated_locals() {
         ("s12", "c12"),
         ("c1", "L2"),
         ("s_k1", "L2"),
+        ("nc23", "L2"),
     ] {
         assert_eq!(
             check::toml(&planar_rr(l1, l2), &Q),
@@ -55,7 +56,7 @@ fn parameters_named_like_generated_locals() {
         );
     }
     // Look-alikes that the code never binds stay usable.
-    for (l1, l2) in [("s", "c"), ("t", "cx"), ("sa1", "c_bar")] {
+    for (l1, l2) in [("s", "c"), ("t", "cx"), ("sa1", "c_bar"), ("n1", "nt2")] {
         assert_eq!(
             check::toml(&planar_rr(l1, l2), &Q),
             Outcome::Checked,

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use kinegen_core::dh::{validate, DhError, PathSeg, RawRobot};
+use kinegen_core::dh::{validate, DhError, Path, PathSeg, RawRobot};
 use kinegen_core::toml_input::RawFile;
 use kinegen_core::{input, Budget, ItemHeader, Options};
 use proc_macro2::TokenStream;
@@ -44,6 +44,13 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
     if raw.name.is_none() {
         raw.name = Some(ident.to_string());
     }
+    // Where the engine's notes are reported: the `budget` entry when it is written in
+    // the macro (notes are about the budget), else the struct's name.
+    let note_span = spans
+        .find(&Path::root().key("budget"))
+        .filter(|_| keys.iter().any(|k| k == "budget"))
+        .and_then(|t| t.clone().into_iter().next())
+        .map_or(ident.span(), |t| t.span());
 
     // An error belongs to the macro when its top-level key was written there (or when
     // there is no file); else to the file, reported at the path literal with its line.
@@ -84,7 +91,13 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
     };
     let generated = kinegen_core::generate(&robot, &header, &options);
     let tokens = generated.tokens;
-    Ok(quote! { #tokens #rebuild_on_change })
+    let warnings = crate::warnings::warnings(
+        &generated.notes,
+        &header.ident.to_string(),
+        note_span,
+        &attrs,
+    );
+    Ok(quote! { #tokens #rebuild_on_change #warnings })
 }
 
 /// The file of the file form, relative to the crate being compiled.
