@@ -24,7 +24,8 @@ fn main() {
     let coder = Coder::new(&robot, &model.chain);
     let ids: Vec<_> = model.jacobian.iter().flatten().copied().collect();
     let body = coder.body(&ids);
-    println!("UR5 geometric Jacobian (world frame, rows [vx vy vz wx wy wz]), s_i = sin(q_i), c_i = cos(q_i):\n");
+    println!("UR5 geometric Jacobian (world frame, rows [vx vy vz wx wy wz]), s_i = sin(q_i), c_i = cos(q_i),");
+    println!("c23 = cos(q2 + q3), nc23 = -cos(q2 + q3) (likewise s234, ns234):\n");
     for (name, formula) in &body.defs {
         println!("  {name} = {formula}");
     }
