@@ -146,24 +146,13 @@ impl Model {
         // so `frames` is one problem and the fused `fk_and_jacobian` has its own. The
         // pass copies normal forms instead of recomputing them, so check it by value.
         let g = &mut chain.graph;
-        let flat = |r: &[[Id; 4]; 3]| r.iter().flatten().copied().collect::<Vec<Id>>();
-        let frames: Vec<Id> = out.frames.iter().flat_map(flat).collect();
-        let matrix = |m: &Rows| m.iter().flatten().copied().collect::<Vec<Id>>();
-        let mut signed = Vec::new();
-        for group in [
-            flat(&out.fk),
-            frames,
-            matrix(&out.jacobian),
-            matrix(&out.jacobian_ee),
-            matrix(&out.task),
-        ] {
-            signed.extend(crate::signs::assign(g, &group));
-        }
-        let inward = out.with_ids(signed);
-        let fused_before: Vec<Id> = flat(&out.fk)
-            .into_iter()
-            .chain(matrix(&out.jacobian))
+        let groups = out.groups();
+        let signed: Vec<Id> = groups
+            .iter()
+            .flat_map(|group| crate::signs::assign(g, group))
             .collect();
+        let inward = out.with_ids(signed);
+        let fused_before = [groups[0].as_slice(), &groups[2]].concat();
         let fused_after = crate::signs::assign(g, &fused_before);
         let probe = crate::polish::Probe::new(&chain);
         let bad = out
@@ -267,14 +256,21 @@ impl Outputs {
 
     /// Every id: fk, frames, jacobian, jacobian_ee, task, row-major.
     fn ids(&self) -> Vec<Id> {
-        let mut v: Vec<Id> = self.fk.iter().flatten().copied().collect();
-        for f in &self.frames {
-            v.extend(f.iter().flatten());
-        }
-        for m in [&self.jacobian, &self.jacobian_ee, &self.task] {
-            v.extend(m.iter().flatten());
-        }
-        v
+        self.groups().concat()
+    }
+
+    /// The ids per generated function — fk, frames (all joints), jacobian,
+    /// jacobian_ee, task — each row-major; concatenated they are [`Outputs::ids`].
+    fn groups(&self) -> [Vec<Id>; 5] {
+        let flat = |m: &[[Id; 4]; 3]| m.iter().flatten().copied().collect::<Vec<Id>>();
+        let matrix = |m: &Rows| m.iter().flatten().copied().collect::<Vec<Id>>();
+        [
+            flat(&self.fk),
+            self.frames.iter().flat_map(flat).collect(),
+            matrix(&self.jacobian),
+            matrix(&self.jacobian_ee),
+            matrix(&self.task),
+        ]
     }
 
     /// The same shape filled with `ids`, in the order of [`Outputs::ids`].

@@ -167,15 +167,10 @@ impl Problem {
         let own = match self.nodes[i] {
             Local::Num | Local::Leaf => 0,
             Local::Add(a, b) | Local::Sub(a, b) => {
-                let sb = if matches!(self.nodes[i], Local::Sub(..)) {
-                    -1
-                } else {
-                    1
-                };
-                // A term enters "negated" when its available sign disagrees with the
-                // sign it has in `s·v`; constants agree with anything.
-                let neg_a = !self.is_num(a) && s * self.sign(ch, a) < 0;
-                let neg_b = !self.is_num(b) && s * sb * self.sign(ch, b) < 0;
+                // Constants agree with any sign.
+                let (ta, tb) = self.term_signs(ch, i);
+                let neg_a = !self.is_num(a) && ta < 0;
+                let neg_b = !self.is_num(b) && tb < 0;
                 NEG * u32::from(neg_a && neg_b)
             }
             Local::Mul(a, b) => {
@@ -200,6 +195,18 @@ impl Problem {
             0
         };
         own + out
+    }
+
+    /// For a sum or difference `i` computed as `s·v`: the sign with which each
+    /// operand, as it is available, enters (`s·(a ± b) = ta·wa + tb·wb`); a term enters
+    /// negated when that sign is −1.
+    fn term_signs(&self, ch: &Choice, i: usize) -> (i8, i8) {
+        let s = self.sign(ch, i);
+        match self.nodes[i] {
+            Local::Add(a, b) => (s * self.sign(ch, a), s * self.sign(ch, b)),
+            Local::Sub(a, b) => (s * self.sign(ch, a), -s * self.sign(ch, b)),
+            _ => unreachable!("term_signs of a sum or difference"),
+        }
     }
 
     fn is_num(&self, i: usize) -> bool {
@@ -345,13 +352,7 @@ impl Problem {
             built[i] = match self.nodes[i] {
                 Local::Num | Local::Leaf => id,
                 Local::Add(a, b) | Local::Sub(a, b) => {
-                    let sb = if matches!(self.nodes[i], Local::Sub(..)) {
-                        -1
-                    } else {
-                        1
-                    };
-                    let ta = s * self.sign(ch, a);
-                    let tb = s * sb * self.sign(ch, b);
+                    let (ta, tb) = self.term_signs(ch, i);
                     let (ta, xa) = self.term(g, &built, a, ta);
                     let (tb, xb) = self.term(g, &built, b, tb);
                     let nf = |g: &Graph| signed_nf(g, id, s);
