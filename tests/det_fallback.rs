@@ -8,6 +8,9 @@
 
 use std::any::{Any, TypeId};
 
+mod common;
+
+use common::configurations;
 use kinegen::Kinematics;
 use kinegen_core::numeric::{self, NumericRobot};
 
@@ -116,21 +119,6 @@ fn is_no_factors<T: Any>(_: &T) -> bool {
     TypeId::of::<T>() == TypeId::of::<NoFactors>()
 }
 
-/// Deterministic joint values in [-π, π] (SplitMix64).
-fn configurations(seed: u64, count: usize) -> Vec<[f64; 6]> {
-    let mut state = seed;
-    let mut unit = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..count)
-        .map(|_| core::array::from_fn(|_| std::f64::consts::PI * (2.0 * unit() - 1.0)))
-        .collect()
-}
-
 /// Hadamard's bound `Π |column|`: the scale `|det J|` is measured against.
 fn hadamard(j: &[[f64; 6]; 6]) -> f64 {
     (0..6)
@@ -155,7 +143,7 @@ fn general_6r_lu_determinant_equals_the_numeric_one() {
         kinegen_core::toml_input::load_str(GENERAL_6R_TOML, "general_6r.toml").unwrap();
     let num = NumericRobot::new(&robot).unwrap();
     let arm = General6r::default();
-    for q in configurations(6, 200) {
+    for q in configurations::<6>(6, 200) {
         // Same table: same pose.
         let t = arm.fk(&q);
         let tr = num.fk(&q).unwrap();

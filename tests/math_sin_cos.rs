@@ -142,10 +142,9 @@ fn near_multiples_of_half_pi() {
     compare("k·π/2 ± 3 ulps", xs.into_iter(), 1.2e-16);
 }
 
-#[test]
-fn thresholds_of_the_fast_path() {
+/// |x| = 2⁻²⁷·√2 (tiny cut-off), 2²⁰·π/2 (fast-path bound) and π/4, ± a few ulps.
+fn fast_path_edges() -> Vec<f64> {
     let mut xs = Vec::new();
-    // |x| = 2⁻²⁷·√2 (tiny cut-off) and 2²⁰·π/2 (fast-path bound), ± a few ulps.
     for edge in [
         f64::from_bits(0x3e46_a09e_0000_0000),
         f64::from_bits(0x4139_21fb_0000_0000),
@@ -158,6 +157,12 @@ fn thresholds_of_the_fast_path() {
             xs.push(-x);
         }
     }
+    xs
+}
+
+#[test]
+fn thresholds_of_the_fast_path() {
+    let xs = fast_path_edges();
     compare("thresholds", xs.into_iter(), 1.2e-16);
 }
 
@@ -411,19 +416,7 @@ fn batched_near_every_multiple_of_half_pi() {
 
 #[test]
 fn batched_thresholds_of_the_fast_path() {
-    let mut xs = Vec::new();
-    for edge in [
-        f64::from_bits(0x3e46_a09e_0000_0000),
-        f64::from_bits(0x4139_21fb_0000_0000),
-        f64::from_bits(0x4139_21fb_5444_2d18),
-        FRAC_PI_2 / 2.0,
-    ] {
-        for dx in -4i64..=4 {
-            let x = f64::from_bits((edge.to_bits() as i64 + dx) as u64);
-            xs.push(x);
-            xs.push(-x);
-        }
-    }
+    let xs = fast_path_edges();
     // One at a time beside ordinary lanes, and all lanes together.
     for &x in &xs {
         for lane in 0..6 {

@@ -3,6 +3,9 @@
 //! the deadline cuts depends on the machine (the notes, compiler warnings, say which;
 //! `kinegen-core/tests/budget.rs` pins them at 0 ms); the values do not.
 
+mod common;
+
+use common::configurations;
 use kinegen::Kinematics;
 use kinegen_core::numeric::NumericRobot;
 
@@ -12,21 +15,6 @@ kinegen::kinematics! {
     #[allow(deprecated)]
     pub struct PandaRushed = "robots/panda.toml";
     budget: { time_ms: 1 },
-}
-
-/// Deterministic joint values in [-π, π] (SplitMix64).
-fn configurations(seed: u64, count: usize) -> Vec<[f64; 7]> {
-    let mut state = seed;
-    let mut unit = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..count)
-        .map(|_| core::array::from_fn(|_| std::f64::consts::PI * (2.0 * unit() - 1.0)))
-        .collect()
 }
 
 #[test]
@@ -40,7 +28,7 @@ fn rushed_panda_matches_the_numeric_reference_and_the_full_expansion() {
     let rushed = PandaRushed::default();
     let full = kinegen_robots::Panda::default();
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
-    for q in configurations(7, 200) {
+    for q in configurations::<7>(7, 200) {
         let (t, j) = rushed.fk_and_jacobian(&q);
         let (tr, jr) = (num.fk(&q).unwrap(), num.jacobian(&q).unwrap());
         let jee = rushed.jacobian_ee(&q);
