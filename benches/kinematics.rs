@@ -22,7 +22,7 @@ use criterion::{criterion_group, Bencher, Criterion};
 use k::nalgebra as kna;
 use kinegen::ik::XorShift64;
 use kinegen::Kinematics;
-use kinegen_core::dh::{Convention, JointKind};
+use kinegen_core::model::{dh::Convention, robot::JointKind};
 use kinegen_core::numeric::{rot_x, rot_z, trans, NumericRobot};
 use kinegen_robots::{Panda, Puma560, Ur5};
 use nalgebra::{Matrix4, Matrix6, SMatrix, Vector3};
@@ -37,7 +37,7 @@ fn load(file: &str) -> NumericRobot {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("robots")
         .join(file);
-    let robot = kinegen_core::toml_input::load_file(&path)
+    let robot = kinegen_core::front::toml_file::load_file(&path)
         .unwrap_or_else(|e| panic!("{file}: {e:?}"))
         .0;
     NumericRobot::new(&robot).unwrap()

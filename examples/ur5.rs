@@ -3,13 +3,12 @@
 //!
 //! `cargo run --example ur5`
 
-use kinegen_core::code::Coder;
-use kinegen_core::model::Model;
+use kinegen_core::emit::code::Coder;
 use kinegen_robots::Ur5;
 
 fn main() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.toml");
-    let (robot, options) = match kinegen_core::toml_input::load_file(path.as_ref()) {
+    let (robot, options) = match kinegen_core::front::toml_file::load_file(path.as_ref()) {
         Ok(x) => x,
         Err(e) => {
             eprintln!("{e}");
@@ -17,11 +16,12 @@ fn main() {
         }
     };
     let start = std::time::Instant::now();
-    let mut model = Model::build(&robot, &options);
-    let det = model.determinant(&robot);
+    let chain = robot.chain();
+    let derived = kinegen_core::derive(&chain, &options);
     let elapsed = start.elapsed();
+    let (model, det) = (&derived.model, &derived.det);
 
-    let coder = Coder::new(&robot, &model.chain);
+    let coder = Coder::new(&chain, &model.sym);
     let ids: Vec<_> = model.jacobian.iter().flatten().copied().collect();
     let body = coder.body(&ids);
     println!("UR5 geometric Jacobian (world frame, rows [vx vy vz wx wy wz]), s_i = sin(q_i), c_i = cos(q_i),");
@@ -40,14 +40,15 @@ fn main() {
         body.ops.neg,
         body.ops.trig
     );
-    match &det {
-        Ok(d) => {
+    match det {
+        Some(Ok(d)) => {
             println!("det J = {}\n\nSingular where:", d.text);
             for f in &d.factors {
                 println!("  {} = 0", f.text);
             }
         }
-        Err(e) => println!("det J: {e}"),
+        Some(Err(e)) => println!("det J: {e}"),
+        None => println!("det J: the Jacobian is not square"),
     }
     println!(
         "\nEngine time (this build's profile): {:.1} ms",

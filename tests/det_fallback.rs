@@ -140,7 +140,7 @@ fn the_fallback_was_taken() {
 #[test]
 fn general_6r_lu_determinant_equals_the_numeric_one() {
     let (robot, _) =
-        kinegen_core::toml_input::load_str(GENERAL_6R_TOML, "general_6r.toml").unwrap();
+        kinegen_core::front::toml_file::load_str(GENERAL_6R_TOML, "general_6r.toml").unwrap();
     let num = NumericRobot::new(&robot).unwrap();
     let arm = General6r::default();
     for q in configurations::<6>(6, 200) {
@@ -167,7 +167,7 @@ fn general_6r_lu_determinant_equals_the_numeric_one() {
 fn lu_determinant_is_finite_and_right_at_and_near_singularities() {
     let lu = Ur5Lu::default();
     let closed = kinegen_robots::Ur5::default();
-    let robot = kinegen_core::toml_input::load_file(
+    let robot = kinegen_core::front::toml_file::load_file(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/ur5.toml"),
     )
     .unwrap()

@@ -19,7 +19,7 @@ kinegen::kinematics! {
 
 #[test]
 fn rushed_panda_matches_the_numeric_reference_and_the_full_expansion() {
-    let robot = kinegen_core::toml_input::load_file(
+    let robot = kinegen_core::front::toml_file::load_file(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/panda.toml"),
     )
     .unwrap()

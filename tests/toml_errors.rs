@@ -1,7 +1,7 @@
 //! The compile-fail cases of `tests/ui` through the TOML front end: the same messages,
 //! each with the line of the offending entry.
 
-use kinegen_core::toml_input::load_str;
+use kinegen_core::front::toml_file::load_str;
 
 /// The errors of `src` as `file:LINE: path: message` lines.
 fn errors(src: &str) -> Vec<String> {

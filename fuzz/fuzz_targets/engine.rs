@@ -2,7 +2,7 @@
 //! engine's model equals the numeric reference.
 #![no_main]
 
-use kinegen_core::dh::validate;
+use kinegen_core::model::validate::validate;
 use kinegen_core::Options;
 use libfuzzer_sys::fuzz_target;
 

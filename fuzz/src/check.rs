@@ -7,9 +7,8 @@
 //! reference of `kinegen_core::numeric`: FK, both Jacobians and the closed-form
 //! determinant when there is one. Any difference panics.
 
-use kinegen_core::model::Model;
 use kinegen_core::numeric::{self, NumericRobot};
-use kinegen_core::{generate, toml_input, ItemHeader, Options, Robot};
+use kinegen_core::{derive, front::toml_file, generate, Derived, ItemHeader, Options, Robot};
 
 /// Tables with more joints are only loaded, not generated (time per input).
 pub const MAX_JOINTS: usize = 8;
@@ -30,7 +29,7 @@ pub enum Outcome {
 
 /// Load TOML text; if it loads, generate and check it at joint values from `q_seed`.
 pub fn toml(src: &str, q_seed: &[f64]) -> Outcome {
-    match toml_input::load_str(src, "fuzz.toml") {
+    match toml_file::load_str(src, "fuzz.toml") {
         Err(e) => {
             // Every error names the file and says something.
             assert!(!e.errors.is_empty(), "an error without a message");
@@ -50,7 +49,7 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
     if robot.dof() > MAX_JOINTS {
         return Outcome::Generated;
     }
-    let g = generate(robot, &ItemHeader::public(&robot.name), options);
+    let g = generate(&robot.chain(), &ItemHeader::public(&robot.name), options);
     let code = g.pretty();
     assert!(
         !code.contains("compile_error"),
@@ -70,8 +69,9 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
     if scale >= 1e4 {
         return Outcome::Generated; // rounding would swamp any tolerance
     }
-    let mut model = Model::build(robot, options);
-    let det = model.determinant(robot).ok();
+    let chain = robot.chain();
+    let Derived { model, det } = derive(&chain, options);
+    let det = det.and_then(Result::ok);
     let n = robot.dof();
     let q: Vec<f64> = (0..n)
         .map(|i| {
@@ -87,7 +87,7 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
     let tol = |want: f64| 1e-9 * (1.0 + want.abs() + scale + 4.0 * n as f64);
     let t = num.fk(&q).unwrap();
     let fk: Vec<_> = model.fk_rows.iter().flatten().copied().collect();
-    let got = model.eval(robot, &q, &fk);
+    let got = model.eval(&chain, &q, &fk);
     for r in 0..3 {
         for c in 0..4 {
             let want = t[(r, c)];
@@ -105,7 +105,7 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
         (&model.jacobian_ee, &jee, "Jee"),
     ] {
         let ids: Vec<_> = rows.iter().flatten().copied().collect();
-        let got = model.eval(robot, &q, &ids);
+        let got = model.eval(&chain, &q, &ids);
         for r in 0..6 {
             for c in 0..n {
                 let want = reference[(r, c)];
@@ -120,7 +120,7 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
     if robot.task.is_some() {
         let reference = num.task_jacobian(&q).unwrap();
         let ids: Vec<_> = model.task.iter().flatten().copied().collect();
-        let got = model.eval(robot, &q, &ids);
+        let got = model.eval(&chain, &q, &ids);
         assert_eq!(got.len(), reference.nrows() * n, "task Jacobian shape");
         for r in 0..reference.nrows() {
             for c in 0..n {
@@ -138,7 +138,7 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
         let m = nalgebra::DMatrix::from_fn(d.rows.len(), n, |r, c| j[(d.rows[r], c)]);
         let want = numeric::det(&m).unwrap();
         let hadamard: f64 = m.column_iter().map(|c| c.norm()).product();
-        let got = model.eval(robot, &q, &[d.node])[0];
+        let got = model.eval(&chain, &q, &[d.node])[0];
         assert!(
             (got - want).abs() <= 1e-9 * want.abs() + 1e-11 * hadamard,
             "det J at q = {q:?}: engine {got} ({}) vs numeric {want}",

@@ -4,7 +4,7 @@
 //! the engine.
 
 use arbitrary::Arbitrary;
-use kinegen_core::dh::{RawJoint, RawRobot, RawValue};
+use kinegen_core::model::raw::{RawJoint, RawRobot, RawValue};
 
 /// An angle entry.
 #[derive(Arbitrary, Clone, Copy, Debug)]

@@ -1,15 +1,10 @@
-//! The one place the CLI gets Jacobian determinants from the engine.
-//!
-//! HOOK(issue 3): the closed-form determinant is being added to `kinegen_core::model`
-//! (`Model::determinant`). Until it lands, [`determinants`] returns no determinant and
-//! the reason, and every consumer prints `null` / "not available": `show --what det`,
-//! `show --what singularities`, `eval`'s `det` and `det_task`, `stats`' `det`. To
-//! connect it, fill [`Determinants::det`] (square 6×6 world Jacobian) and
-//! [`Determinants::det_task`] (square task Jacobian) here; nothing else changes.
+//! The one place the CLI gets Jacobian determinants from the engine
+//! ([`kinegen_core::Derived::det`]): the square 6×6 world Jacobian's, or the square task
+//! Jacobian's, or why there is none.
 
-use kinegen_core::graph::Id;
-use kinegen_core::model::Model;
-use kinegen_core::Robot;
+use kinegen_core::algebra::graph::Id;
+use kinegen_core::kinematics::det::structural::square_rows;
+use kinegen_core::{Chain, Derived};
 
 /// A closed-form determinant, as the CLI shows it.
 #[derive(Clone, Debug)]
@@ -48,46 +43,50 @@ pub struct Determinants {
     pub missing: String,
 }
 
-/// The determinants of `robot`. Takes the model mutably: the engine adds the
-/// determinant's nodes to the model's graph, so they evaluate like every other output.
-pub fn determinants(robot: &Robot, model: &mut Model) -> Determinants {
-    let Some(rows) = kinegen_core::det::square_rows(robot) else {
+/// The determinants of `chain` from the engine's results.
+pub fn determinants(chain: &Chain, derived: &Derived) -> Determinants {
+    let Some(rows) = square_rows(chain) else {
         return Determinants {
             det: None,
             det_task: None,
             missing: "not available: the Jacobian is not square (see manipulability)".into(),
         };
     };
-    match model.determinant(robot) {
-        Ok(d) => {
+    match &derived.det {
+        Some(Ok(d)) => {
             let det = Determinant {
                 node: d.node,
-                text: d.text,
-                latex: d.latex,
+                text: d.text.clone(),
+                latex: d.latex.clone(),
                 factors: d
                     .factors
-                    .into_iter()
+                    .iter()
                     .map(|f| Factor {
-                        text: f.text,
-                        latex: f.latex,
+                        text: f.text.clone(),
+                        latex: f.latex.clone(),
                         power: f.power,
-                        joints: f.joints,
+                        joints: f.joints.clone(),
                     })
                     .collect(),
             };
             // The 6×6 world Jacobian, or the square task Jacobian (its rows).
             let full = rows.len() == 6 && rows == (0..6).collect::<Vec<_>>();
-            let task_square = robot.task.as_ref().is_some_and(|t| t.len() == robot.dof());
+            let task_square = chain.task.as_ref().is_some_and(|t| t.len() == chain.dof());
             Determinants {
                 det: full.then(|| det.clone()),
                 det_task: task_square.then_some(det),
                 missing: String::new(),
             }
         }
-        Err(why) => Determinants {
+        Some(Err(why)) => Determinants {
             det: None,
             det_task: None,
             missing: format!("not available: {why}"),
+        },
+        None => Determinants {
+            det: None,
+            det_task: None,
+            missing: "not available: the Jacobian is not square (see manipulability)".into(),
         },
     }
 }

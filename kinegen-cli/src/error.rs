@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use kinegen_core::toml_input::LoadError;
+use kinegen_core::front::toml_file::LoadError;
 
 /// Why a command did not run.
 #[derive(Debug)]

@@ -6,9 +6,9 @@
 
 use std::fmt::Write;
 
-use kinegen_core::graph::Id;
-use kinegen_core::model::Model;
-use kinegen_core::Robot;
+use kinegen_core::algebra::graph::Id;
+use kinegen_core::kinematics::model::Model;
+use kinegen_core::Chain;
 use serde_json::{json, Value};
 
 use crate::det_hook::Determinants;
@@ -63,31 +63,31 @@ pub struct Values {
     pub manipulability: f64,
 }
 
-fn rows(model: &Model, robot: &Robot, q: &[f64], rows: &[Vec<Id>]) -> Vec<Vec<f64>> {
-    rows.iter().map(|r| model.eval(robot, q, r)).collect()
+fn rows(model: &Model, chain: &Chain, q: &[f64], rows: &[Vec<Id>]) -> Vec<Vec<f64>> {
+    rows.iter().map(|r| model.eval(chain, q, r)).collect()
 }
 
 /// Evaluate every output at `q` (length already checked).
-pub fn values(robot: &Robot, model: &Model, dets: &Determinants, q: &[f64]) -> Values {
+pub fn values(chain: &Chain, model: &Model, dets: &Determinants, q: &[f64]) -> Values {
     let mut fk: Vec<Vec<f64>> = model
         .fk_rows
         .iter()
-        .map(|r| model.eval(robot, q, r))
+        .map(|r| model.eval(chain, q, r))
         .collect();
     fk.push(vec![0.0, 0.0, 0.0, 1.0]);
-    let jacobian = rows(model, robot, q, &model.jacobian);
-    let jacobian_ee = rows(model, robot, q, &model.jacobian_ee);
-    let task_jacobian = robot
+    let jacobian = rows(model, chain, q, &model.jacobian);
+    let jacobian_ee = rows(model, chain, q, &model.jacobian_ee);
+    let task_jacobian = chain
         .task
         .as_ref()
-        .map(|_| rows(model, robot, q, &model.task));
+        .map(|_| rows(model, chain, q, &model.task));
     let one = |d: &Option<crate::det_hook::Determinant>| {
-        d.as_ref().map(|d| model.eval(robot, q, &[d.node])[0])
+        d.as_ref().map(|d| model.eval(chain, q, &[d.node])[0])
     };
     // Task rows when the robot names them: a planar arm's 6×N J has rank ≤ 3, so
     // √det(J Jᵀ) of the full J would be 0 everywhere.
     let m = task_jacobian.as_ref().unwrap_or(&jacobian);
-    let dm = nalgebra::DMatrix::from_fn(m.len(), robot.dof(), |r, c| m[r][c]);
+    let dm = nalgebra::DMatrix::from_fn(m.len(), chain.dof(), |r, c| m[r][c]);
     Values {
         fk,
         det: one(&dets.det),
@@ -123,13 +123,13 @@ fn matrix(s: &mut String, title: &str, labels: &[&str], m: &[Vec<f64>]) {
 }
 
 /// A readable table of the values.
-pub fn to_table(robot: &Robot, q: &[f64], v: &Values, missing: &str) -> String {
-    let mut s = format!("{} at q = {:?}\n\n", robot.name, q);
+pub fn to_table(chain: &Chain, q: &[f64], v: &Values, missing: &str) -> String {
+    let mut s = format!("{} at q = {:?}\n\n", chain.name, q);
     matrix(&mut s, "fk (tool pose T)", &[], &v.fk);
     let rows6 = ["vx", "vy", "vz", "ωx", "ωy", "ωz"];
     matrix(&mut s, "\njacobian (world frame)", &rows6, &v.jacobian);
     matrix(&mut s, "\njacobian_ee (tool frame)", &rows6, &v.jacobian_ee);
-    if let (Some(t), Some(task)) = (&v.task_jacobian, &robot.task) {
+    if let (Some(t), Some(task)) = (&v.task_jacobian, &chain.task) {
         let labels: Vec<&str> = task.iter().map(|r| r.name()).collect();
         matrix(&mut s, "\ntask_jacobian", &labels, t);
     }

@@ -3,17 +3,16 @@
 //! Each section is one output of the generated code (`fk`, `jacobian`, …) with the
 //! same sharing as the generated function: the inputs (`s1 = sin(q1)`), the shared
 //! intermediates (`c23 = cos(q2 + q3) = …`, `t1 = …`), then the entries. The formulas
-//! are the engine's own ([`Coder::body`]), re-printed by [`kinegen_core::latex`].
+//! are the engine's own ([`Coder::body`]), re-printed by [`kinegen_core::emit::latex`].
 
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
-use kinegen_core::chain::AngleSource;
-use kinegen_core::code::{Body, Coder, OpCount};
-use kinegen_core::graph::Id;
-use kinegen_core::latex::{self, latex_name, Block, Equation};
-use kinegen_core::model::Model;
-use kinegen_core::{dh, Robot};
+use kinegen_core::algebra::graph::Id;
+use kinegen_core::emit::code::{Body, Coder, OpCount};
+use kinegen_core::emit::latex::{self, latex_name, Block, Equation};
+use kinegen_core::kinematics::model::Model;
+use kinegen_core::Chain;
 
 use crate::det_hook::{Determinant, Determinants};
 
@@ -56,15 +55,14 @@ struct Section {
 }
 
 /// The text of `show` for `what`; `latex` selects a LaTeX document body.
-pub fn show(robot: &Robot, model: &Model, dets: &Determinants, what: What, latex: bool) -> String {
-    let coder = Coder::new(robot, &model.chain);
+pub fn show(chain: &Chain, model: &Model, dets: &Determinants, what: What, latex: bool) -> String {
+    let coder = Coder::new(chain, &model.sym);
     let want = |w: What| what == w || what == What::All;
-    let n = robot.dof();
+    let n = chain.dof();
     let mut sections = Vec::new();
     if want(What::Fk) {
         let ids: Vec<Id> = model.fk_rows.iter().flatten().copied().collect();
         sections.push(section(
-            robot,
             model,
             &coder,
             &ids,
@@ -76,7 +74,6 @@ pub fn show(robot: &Robot, model: &Model, dets: &Determinants, what: What, latex
     if want(What::Jacobian) {
         let ids: Vec<Id> = model.jacobian.iter().flatten().copied().collect();
         sections.push(section(
-            robot,
             model,
             &coder,
             &ids,
@@ -84,11 +81,10 @@ pub fn show(robot: &Robot, model: &Model, dets: &Determinants, what: What, latex
             "J",
             n,
         ));
-        if let Some(task) = &robot.task {
+        if let Some(task) = &chain.task {
             let ids: Vec<Id> = model.task.iter().flatten().copied().collect();
             let rows: Vec<&str> = task.iter().map(|r| r.name()).collect();
             sections.push(section(
-                robot,
                 model,
                 &coder,
                 &ids,
@@ -174,9 +170,9 @@ pub fn show(robot: &Robot, model: &Model, dets: &Determinants, what: What, latex
         }
     }
     if latex {
-        render_latex(robot, &sections)
+        render_latex(chain, &sections)
     } else {
-        render_text(robot, &sections)
+        render_text(chain, &sections)
     }
 }
 
@@ -192,7 +188,6 @@ fn missing(title: &str, why: &str) -> Section {
 
 /// A section for the outputs `ids`, named `matrix[r][c]` row-major with `cols` columns.
 fn section(
-    robot: &Robot,
     model: &Model,
     coder: &Coder,
     ids: &[Id],
@@ -201,7 +196,7 @@ fn section(
     cols: usize,
 ) -> Section {
     let body = coder.body(ids);
-    let mut defs = inputs(robot, model, &body);
+    let mut defs = inputs(model, &body);
     defs.extend(body.defs.iter().map(|(name, f)| Line {
         text_lhs: name.clone(),
         latex_lhs: latex_name(name),
@@ -239,15 +234,12 @@ fn latex_matrix(m: &str) -> String {
 }
 
 /// `s1 = sin(q1)`, `c1 = cos(q1)` for the angles the body reads.
-fn inputs(robot: &Robot, model: &Model, body: &Body) -> Vec<Line> {
+fn inputs(model: &Model, body: &Body) -> Vec<Line> {
     let used = identifiers(body);
-    let ring = &model.chain.graph.ring;
+    let ring = &model.sym.graph.ring;
     let mut out = Vec::new();
-    for a in &model.chain.angles {
-        let arg = match &a.source {
-            AngleSource::Joint { joint, offset } => with_offset(&format!("q{}", joint + 1), offset),
-            AngleSource::Constant(v) => v.to_string(),
-        };
+    for a in &model.sym.angles {
+        let arg = a.source.text();
         let arg_tex = latex::to_latex(&arg)
             .unwrap_or_else(|_| format!(r"\text{{{}}}", latex::escape_text(&arg)));
         for (var, f) in [(a.vars.0, "sin"), (a.vars.1, "cos")] {
@@ -265,19 +257,7 @@ fn inputs(robot: &Robot, model: &Model, body: &Body) -> Vec<Line> {
             }
         }
     }
-    let _ = robot;
     out
-}
-
-fn with_offset(q: &str, offset: &kinegen_core::value::Value) -> String {
-    let o = offset.to_string();
-    if o == "0" {
-        q.to_string()
-    } else if let Some(r) = o.strip_prefix('-') {
-        format!("{q} - {r}")
-    } else {
-        format!("{q} + {o}")
-    }
 }
 
 /// Identifiers in a body's formulas.
@@ -330,14 +310,15 @@ fn angle_sum(name: &str) -> Option<(String, String)> {
     Some((format!("{f}({text})"), format!(r"\{f}\left({tex}\right)")))
 }
 
-fn header_text(robot: &Robot) -> String {
-    let conv = match robot.convention {
-        dh::Convention::Standard => "standard",
-        dh::Convention::Modified => "modified (Craig)",
-    };
-    let mut s = format!("{} — {} joints, {conv} DH\n", robot.name, robot.dof());
-    if !robot.params.is_empty() {
-        let ps: Vec<String> = robot
+fn header_text(chain: &Chain) -> String {
+    let mut s = format!(
+        "{} — {} joints, {}\n",
+        chain.name,
+        chain.dof(),
+        chain.description
+    );
+    if !chain.params.is_empty() {
+        let ps: Vec<String> = chain
             .params
             .iter()
             .map(|p| format!("{} = {}", p.name, p.value))
@@ -371,8 +352,8 @@ fn rhs_text(l: &Line) -> String {
     parts.join(" = ")
 }
 
-fn render_text(robot: &Robot, sections: &[Section]) -> String {
-    let mut s = header_text(robot);
+fn render_text(chain: &Chain, sections: &[Section]) -> String {
+    let mut s = header_text(chain);
     for sec in sections {
         let _ = write!(s, "\n== {}", sec.title);
         if let Some(o) = &sec.ops {
@@ -408,9 +389,9 @@ fn rhs_latex(l: &Line) -> String {
     parts.join(" = ")
 }
 
-fn render_latex(robot: &Robot, sections: &[Section]) -> String {
+fn render_latex(chain: &Chain, sections: &[Section]) -> String {
     let mut blocks = Vec::new();
-    let mut intro = latex::escape_text(header_text(robot).trim_end()).replace('\n', "\\\\\n");
+    let mut intro = latex::escape_text(header_text(chain).trim_end()).replace('\n', "\\\\\n");
     intro
         .push_str(r"\\ Indices are 1-based; $s_{i} = \sin q_{i}$, $c_{ij} = \cos(q_{i} + q_{j})$.");
     blocks.push(Block {
@@ -451,7 +432,7 @@ fn render_latex(robot: &Robot, sections: &[Section]) -> String {
                 .collect(),
         });
     }
-    latex::latex_document_body(&robot.name, &blocks)
+    latex::latex_document_body(&chain.name, &blocks)
 }
 
 #[cfg(test)]

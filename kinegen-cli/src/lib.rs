@@ -17,8 +17,7 @@ pub mod robots;
 pub mod stats;
 
 use clap::{Parser, Subcommand};
-use kinegen_core::model::Model;
-use kinegen_core::{generate, ItemHeader};
+use kinegen_core::{derive, generate, ItemHeader};
 
 pub use error::CliError;
 pub use formulas::What;
@@ -76,40 +75,40 @@ pub enum Command {
 pub fn run(cli: &Cli) -> Result<String, CliError> {
     match &cli.command {
         Command::Show { robot, what, latex } => {
-            let (robot, options) = robots::load(robot)?;
-            let mut model = Model::build(&robot, &options);
-            let dets = det_hook::determinants(&robot, &mut model);
-            Ok(formulas::show(&robot, &model, &dets, *what, *latex))
+            let (chain, options) = robots::load(robot)?;
+            let derived = derive(&chain, &options);
+            let dets = det_hook::determinants(&chain, &derived);
+            Ok(formulas::show(&chain, &derived.model, &dets, *what, *latex))
         }
         Command::Rust { robot } => {
-            let (robot, options) = robots::load(robot)?;
+            let (chain, options) = robots::load(robot)?;
             // Exactly the macro's call for `pub struct <Name>` (kinegen-macro's expand).
-            Ok(generate(&robot, &ItemHeader::public(&robot.name), &options).pretty())
+            Ok(generate(&chain, &ItemHeader::public(&chain.name), &options).pretty())
         }
         Command::Eval { robot, q, json } => {
-            let (robot, options) = robots::load(robot)?;
-            let q = eval::parse_q(q, robot.dof())?;
-            let mut model = Model::build(&robot, &options);
-            let dets = det_hook::determinants(&robot, &mut model);
-            let v = eval::values(&robot, &model, &dets, &q);
+            let (chain, options) = robots::load(robot)?;
+            let q = eval::parse_q(q, chain.dof())?;
+            let derived = derive(&chain, &options);
+            let dets = det_hook::determinants(&chain, &derived);
+            let v = eval::values(&chain, &derived.model, &dets, &q);
             Ok(if *json {
                 format!("{}\n", eval::to_json(&v))
             } else {
-                eval::to_table(&robot, &q, &v, &dets.missing)
+                eval::to_table(&chain, &q, &v, &dets.missing)
             })
         }
         Command::Stats { robot, json } => {
-            let (robot, options) = robots::load(robot)?;
+            let (chain, options) = robots::load(robot)?;
             let t = std::time::Instant::now();
-            let generated = generate(&robot, &ItemHeader::public(&robot.name), &options);
+            let generated = generate(&chain, &ItemHeader::public(&chain.name), &options);
             let time_ms = t.elapsed().as_secs_f64() * 1e3;
-            let mut model = Model::build(&robot, &options);
-            let dets = det_hook::determinants(&robot, &mut model);
-            let s = stats::stats(&robot, &model, &dets, &generated, time_ms);
+            let derived = derive(&chain, &options);
+            let dets = det_hook::determinants(&chain, &derived);
+            let s = stats::stats(&chain, &derived.model, &dets, &generated, time_ms);
             Ok(if *json {
                 format!("{}\n", stats::to_json(&s))
             } else {
-                stats::to_table(&robot, &s, &dets.missing)
+                stats::to_table(&chain, &s, &dets.missing)
             })
         }
     }

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use kinegen_core::{Options, Robot};
+use kinegen_core::{Chain, Options};
 
 use crate::error::CliError;
 
@@ -15,16 +15,16 @@ pub fn names() -> impl Iterator<Item = &'static str> {
 
 /// Load `arg`: an existing file (or anything that looks like a path) is read as TOML;
 /// otherwise a shipped robot by file name (`ur5`), case-insensitively.
-pub fn load(arg: &str) -> Result<(Robot, Options), CliError> {
+pub fn load(arg: &str) -> Result<(Chain, Options), CliError> {
+    use kinegen_core::front::toml_file::{load_file, load_str};
+    let chain = |(robot, options): (kinegen_core::Robot, Options)| (robot.chain(), options);
     let looks_like_path = arg.ends_with(".toml") || arg.contains(['/', '\\']);
     if looks_like_path || Path::new(arg).is_file() {
-        return kinegen_core::toml_input::load_file(Path::new(arg)).map_err(CliError::Load);
+        return load_file(Path::new(arg)).map(chain).map_err(CliError::Load);
     }
     let key = arg.to_ascii_lowercase();
     match ROBOTS.iter().find(|(n, _, _)| *n == key) {
-        Some((_, label, src)) => {
-            kinegen_core::toml_input::load_str(src, label).map_err(CliError::Load)
-        }
+        Some((_, label, src)) => load_str(src, label).map(chain).map_err(CliError::Load),
         None => Err(CliError::Usage(format!(
             "unknown robot `{arg}`: not a file, and not one of {}",
             names().collect::<Vec<_>>().join(", ")

@@ -2,9 +2,9 @@
 
 use std::fmt::Write;
 
-use kinegen_core::code::{Coder, OpCount};
-use kinegen_core::model::Model;
-use kinegen_core::{Generated, Robot};
+use kinegen_core::emit::code::{Coder, OpCount};
+use kinegen_core::kinematics::model::Model;
+use kinegen_core::{Chain, Generated};
 use serde_json::{json, Value};
 
 use crate::det_hook::Determinants;
@@ -25,7 +25,7 @@ pub struct Stats {
 /// Counts from the generated code itself (`Generated::stats`, the counts of the very
 /// bodies emitted) and, for the determinant, from its own body.
 pub fn stats(
-    robot: &Robot,
+    chain: &Chain,
     model: &Model,
     dets: &Determinants,
     generated: &Generated,
@@ -35,7 +35,7 @@ pub fn stats(
         .det
         .as_ref()
         .or(dets.det_task.as_ref())
-        .map(|d| Coder::new(robot, &model.chain).body(&[d.node]).ops);
+        .map(|d| Coder::new(chain, &model.sym).body(&[d.node]).ops);
     Stats {
         fk: generated.stats.fk,
         jacobian: generated.stats.jacobian,
@@ -59,10 +59,10 @@ pub fn to_json(s: &Stats) -> Value {
 }
 
 /// A readable table.
-pub fn to_table(robot: &Robot, s: &Stats, missing: &str) -> String {
+pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
     let mut out = format!(
         "{} — operations of the generated code (after sharing; a subtraction counts as an add)\n\n{:<10}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}\n",
-        robot.name, "output", "add", "mul", "div", "neg", "total", "trig"
+        chain.name, "output", "add", "mul", "div", "neg", "total", "trig"
     );
     let row = |out: &mut String, name: &str, o: &OpCount| {
         let _ = writeln!(

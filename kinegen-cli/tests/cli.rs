@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use assert_cmd::Command;
-use kinegen_core::{generate, numeric, toml_input, ItemHeader};
+use kinegen_core::{front::toml_file, generate, numeric, ItemHeader};
 use predicates::prelude::*;
 use serde_json::Value;
 
@@ -97,15 +97,16 @@ fn shipped_robots_work_from_any_directory() {
 }
 
 /// `kinegen rust` prints what the macro expands to: `kinematics!` calls
-/// `kinegen_core::generate(&robot, &header, &options)` with the header of
+/// `kinegen_core::generate(&robot.chain(), &header, &options)` with the header of
 /// `pub struct <Name>` (kinegen-macro/src/expand.rs), which for the file form is
 /// `ItemHeader::public(&robot.name)`. The file form adds one `const _: &str =
 /// include_str!(…)` line for cargo's rebuild tracking, which is not part of the robot.
 #[test]
 fn rust_is_the_macro_expansion() {
     for name in ["planar_rr", "ur5"] {
-        let (robot, options) = toml_input::load_file(&robot_file(name)).unwrap();
-        let expected = generate(&robot, &ItemHeader::public(&robot.name), &options).pretty();
+        let (robot, options) = toml_file::load_file(&robot_file(name)).unwrap();
+        let expected =
+            generate(&robot.chain(), &ItemHeader::public(&robot.name), &options).pretty();
         assert_eq!(stdout(&["rust", name]), expected, "{name}");
     }
     let planar = stdout(&["rust", "planar_rr"]);
@@ -162,7 +163,7 @@ fn eval_json_matches_the_numeric_reference() {
         let qs: Vec<String> = q.iter().map(|x| x.to_string()).collect();
         let text = stdout(&["eval", name, "--q", &qs.join(","), "--json"]);
         let v: Value = serde_json::from_str(&text).unwrap();
-        let (robot, _) = toml_input::load_file(&robot_file(name)).unwrap();
+        let (robot, _) = toml_file::load_file(&robot_file(name)).unwrap();
         let n = robot.dof();
         let reference = numeric::NumericRobot::new(&robot).unwrap();
         let t = reference.fk(q).unwrap();
@@ -242,8 +243,8 @@ fn eval_table_is_readable() {
 #[test]
 fn stats_counts_are_the_generated_code_s() {
     let v: Value = serde_json::from_str(&stdout(&["stats", "ur5", "--json"])).unwrap();
-    let (robot, options) = toml_input::load_file(&robot_file("ur5")).unwrap();
-    let g = generate(&robot, &ItemHeader::public(&robot.name), &options);
+    let (robot, options) = toml_file::load_file(&robot_file("ur5")).unwrap();
+    let g = generate(&robot.chain(), &ItemHeader::public(&robot.name), &options);
     for (key, ops) in [("fk", g.stats.fk), ("jacobian", g.stats.jacobian)] {
         let o = &v[key];
         let get = |k: &str| o[k].as_u64().unwrap() as usize;

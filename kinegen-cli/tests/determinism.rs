@@ -8,7 +8,7 @@ use common::robot_files;
 
 use std::process::{Command, Stdio};
 
-use kinegen_core::{generate, toml_input, ItemHeader};
+use kinegen_core::{front::toml_file, generate, ItemHeader};
 
 #[test]
 fn the_cli_prints_the_same_code_as_this_process() {
@@ -29,8 +29,8 @@ fn the_cli_prints_the_same_code_as_this_process() {
         })
         .collect();
     for (path, child) in files.iter().zip(children) {
-        let (robot, options) = toml_input::load_file(path).unwrap();
-        let here = generate(&robot, &ItemHeader::public(&robot.name), &options).pretty();
+        let (robot, options) = toml_file::load_file(path).unwrap();
+        let here = generate(&robot.chain(), &ItemHeader::public(&robot.name), &options).pretty();
         let out = child.wait_with_output().unwrap();
         assert!(
             out.status.success(),

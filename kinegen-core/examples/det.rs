@@ -2,7 +2,7 @@
 fn main() {
     for path in std::env::args().skip(1) {
         let (robot, options) =
-            match kinegen_core::toml_input::load_file(std::path::Path::new(&path)) {
+            match kinegen_core::front::toml_file::load_file(std::path::Path::new(&path)) {
                 Ok(x) => x,
                 Err(e) => {
                     eprintln!("{e}");
@@ -10,8 +10,8 @@ fn main() {
                 }
             };
         let t = std::time::Instant::now();
-        let mut model = kinegen_core::model::Model::build(&robot, &options);
-        let det = model.determinant(&robot);
+        let det = kinegen_core::derive(&robot.chain(), &options).det;
+        let det = det.unwrap_or_else(|| Err("the Jacobian is not square".into()));
         let dt = t.elapsed();
         match det {
             Ok(d) => {

@@ -1,16 +1,17 @@
 //! Print the code kinegen generates for a TOML robot: `cargo run -p kinegen-core --example gen -- robots/ur5.toml`.
 fn main() {
     let path = std::env::args().nth(1).expect("usage: gen FILE.toml");
-    let (robot, options) = match kinegen_core::toml_input::load_file(std::path::Path::new(&path)) {
-        Ok(x) => x,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(2);
-        }
-    };
+    let (robot, options) =
+        match kinegen_core::front::toml_file::load_file(std::path::Path::new(&path)) {
+            Ok(x) => x,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(2);
+            }
+        };
     let t = std::time::Instant::now();
     let g = kinegen_core::generate(
-        &robot,
+        &robot.chain(),
         &kinegen_core::ItemHeader::public(&robot.name),
         &options,
     );

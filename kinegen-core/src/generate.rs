@@ -1,149 +1,20 @@
-//! The engine's entry point: a checked [`Robot`] in, a pretty-printable Rust item out.
+//! The engine's entry point, as the pipeline it runs: a [`Chain`] in, a
+//! pretty-printable Rust item out.
+//!
+//! ```text
+//! Chain ─ simplify::order ─▶ Model ─ det ─▶ DetModel ─ emit::functions ─▶ Functions ─ emit::rust ─▶ tokens
+//! ```
 
-use std::time::{Duration, Instant};
+use proc_macro2::TokenStream;
 
-use proc_macro2::{Ident, TokenStream};
-
-use crate::dh::Robot;
-
-/// What the generated item looks like from outside: `#[attrs] vis struct ident`.
-#[derive(Clone, Debug)]
-pub struct ItemHeader {
-    /// Outer attributes written on the struct (doc comments, `#[derive]`s beyond ours).
-    pub attrs: TokenStream,
-    /// Visibility (`pub`, `pub(crate)` or empty).
-    pub vis: TokenStream,
-    /// The type's name.
-    pub ident: Ident,
-}
-
-impl ItemHeader {
-    /// `pub struct <Name>` with the name made a Rust type name from a display name
-    /// (`"UR5"` → `Ur5`, `"planar RR"` → `PlanarRr`).
-    pub fn public(display_name: &str) -> Self {
-        ItemHeader {
-            attrs: TokenStream::new(),
-            vis: quote::quote!(pub),
-            ident: Ident::new(&type_name(display_name), proc_macro2::Span::call_site()),
-        }
-    }
-}
-
-/// A Rust type name (UpperCamelCase) from a display name.
-pub fn type_name(display: &str) -> String {
-    let mut out = String::new();
-    for word in display.split(|c: char| !c.is_ascii_alphanumeric()) {
-        let mut chars = word.chars();
-        if let Some(first) = chars.next() {
-            out.push(first.to_ascii_uppercase());
-            out.extend(chars.map(|c| c.to_ascii_lowercase()));
-        }
-    }
-    if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) {
-        out.insert_str(0, "Robot");
-    }
-    out
-}
-
-/// Bounds on the symbolic engine; over them it emits correct, less simplified code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Budget {
-    /// e-graph node limit per simplification run.
-    pub nodes: usize,
-    /// e-graph iteration limit per run.
-    pub iterations: usize,
-    /// Wall-clock safety net for the whole engine, milliseconds: one deadline, set when
-    /// the engine starts ([`Deadline`]); each long phase checks it and, past it, emits
-    /// correct but less simplified code and a note naming the phase.
-    pub time_ms: u64,
-}
-
-impl Budget {
-    /// Largest normal form (terms) the exact core keeps for one expression.
-    pub fn max_terms(&self) -> usize {
-        self.nodes.max(1)
-    }
-}
-
-/// The moment the engine must stop simplifying: [`Budget::time_ms`] after it started.
-///
-/// Past it every phase takes the path that is always correct: new normal forms are
-/// dropped (structural sharing only), no further middle frame is tried, the e-graph
-/// polish stops, and the determinant is the numeric LU one. Before it, nothing depends
-/// on the clock, so the output is the same on every run that does not reach it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Deadline {
-    /// `None`: never.
-    at: Option<Instant>,
-    /// The budget it came from (for notes).
-    ms: u64,
-}
-
-impl Deadline {
-    /// `ms` milliseconds from now (0: already passed).
-    pub fn after_ms(ms: u64) -> Self {
-        Deadline {
-            at: Instant::now().checked_add(Duration::from_millis(ms)),
-            ms,
-        }
-    }
-
-    /// The deadline of a budget, starting now.
-    pub fn start(budget: &Budget) -> Self {
-        Deadline::after_ms(budget.time_ms)
-    }
-
-    /// A deadline that never passes (the default of the low-level builders).
-    pub fn never() -> Self {
-        Deadline { at: None, ms: 0 }
-    }
-
-    /// Whether it has passed.
-    pub fn passed(&self) -> bool {
-        self.at.is_some_and(|t| Instant::now() >= t)
-    }
-
-    /// Time left (zero once passed; `Duration::MAX` for [`Deadline::never`]).
-    pub fn remaining(&self) -> Duration {
-        match self.at {
-            Some(t) => t.saturating_duration_since(Instant::now()),
-            None => Duration::MAX,
-        }
-    }
-
-    /// What a note says about it: ``the `time_ms` budget (500 ms)``.
-    pub fn describe(&self) -> String {
-        format!("the `time_ms` budget ({} ms)", self.ms)
-    }
-}
-
-impl Default for Deadline {
-    fn default() -> Self {
-        Deadline::never()
-    }
-}
-
-impl Default for Budget {
-    fn default() -> Self {
-        Budget {
-            nodes: 5_000,
-            iterations: 20,
-            time_ms: 10_000,
-        }
-    }
-}
-
-/// Engine options beyond the robot model.
-#[derive(Clone, Debug, Default)]
-pub struct Options {
-    /// Bounds on simplification.
-    pub budget: Budget,
-    /// Extra rewrite rules `(lhs, rhs)` for the e-graph polish, in egg's pattern
-    /// syntax (`("(* ?a (+ ?b ?c))", "(+ (* ?a ?b) (* ?a ?c))")`). For experiments:
-    /// every rewritten expression is checked against the unsimplified one, so a wrong
-    /// rule is caught and reported, never emitted (see [`crate::polish`]).
-    pub extra_rewrites: Vec<(String, String)>,
-}
+use crate::chain::Chain;
+use crate::emit::functions::{functions, Stats};
+use crate::emit::rust::{item, ItemHeader};
+use crate::kinematics::det::closed_form::{self, DetModel};
+use crate::kinematics::det::structural::square_rows;
+use crate::kinematics::model::Model;
+use crate::model::options::{Deadline, Options};
+use crate::simplify::order::cheapest;
 
 /// The engine's output.
 #[derive(Clone, Debug)]
@@ -155,7 +26,7 @@ pub struct Generated {
     /// as a compiler warning.
     pub notes: Vec<String>,
     /// Operation counts of the main outputs.
-    pub stats: crate::emit::Stats,
+    pub stats: Stats,
 }
 
 impl Generated {
@@ -168,27 +39,51 @@ impl Generated {
     }
 }
 
-/// Generate the Rust item for a robot, within `options.budget` (its `time_ms` counts
-/// from here, for the whole engine).
-pub fn generate(robot: &Robot, header: &ItemHeader, options: &Options) -> Generated {
-    let deadline = Deadline::start(&options.budget);
-    crate::emit::emit(robot, header, options, deadline)
+/// The symbolic results for a chain, before anything is printed.
+#[derive(Clone, Debug)]
+pub struct Derived {
+    /// FK, frames and Jacobians, simplified, in the cheapest evaluation order.
+    pub model: Model,
+    /// The closed-form determinant of the square Jacobian (`Err`: why not; `None`: the
+    /// Jacobian is not square).
+    pub det: Option<Result<DetModel, String>>,
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn deadlines() {
-        let never = Deadline::never();
-        assert!(!never.passed());
-        assert_eq!(never.remaining(), Duration::MAX);
-        let now = Deadline::after_ms(0);
-        assert!(now.passed());
-        assert_eq!(now.remaining(), Duration::ZERO);
-        let later = Deadline::start(&Budget::default());
-        assert!(later.remaining() <= Duration::from_secs(10));
-        assert_eq!(later.describe(), "the `time_ms` budget (10000 ms)");
+/// Generate the Rust item for a chain, within `options.budget` (its `time_ms` counts
+/// from here, for the whole engine).
+///
+/// ```
+/// use kinegen_core::{front::toml_file::load_str, generate, ItemHeader};
+/// let src = "name = \"RR\"\nconvention = \"standard\"\n[params]\nL1 = 1.0\nL2 = 0.8\n\
+///            [[joints]]\ntype = \"revolute\"\na = \"L1\"\nalpha = 0\nd = 0\n\
+///            [[joints]]\ntype = \"revolute\"\na = \"L2\"\nalpha = 0\nd = 0\n";
+/// let (robot, options) = load_str(src, "rr.toml").unwrap();
+/// let code = generate(&robot.chain(), &ItemHeader::public("RR"), &options).pretty();
+/// assert!(code.contains("pub fn jacobian(&self, q: &[f64; 2]) -> [[f64; 2]; 6]"));
+/// ```
+pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
+    let derived = derive(chain, options);
+    // What the type holds: each method's straight-line code and doc, the constants.
+    let functions = functions(chain, &derived.model, &derived.det);
+    // Printed, and parsed into tokens.
+    let tokens = item(chain, header, &functions);
+    let mut notes = derived.model.notes;
+    notes.extend(functions.notes);
+    Generated {
+        tokens,
+        notes,
+        stats: functions.stats,
     }
+}
+
+/// The symbolic stages of [`generate`]: what the CLI shows and evaluates.
+pub fn derive(chain: &Chain, options: &Options) -> Derived {
+    let deadline = Deadline::start(&options.budget);
+    // FK, frames and Jacobians in each candidate evaluation order (middle frame), each
+    // simplified — e-graph polish, fewest negations, every rewrite checked — and the
+    // cheapest kept.
+    let mut model = cheapest(chain, options, deadline);
+    // The determinant of the square Jacobian, factored, in closed form.
+    let det = square_rows(chain).map(|_| closed_form::determinant(chain, &mut model));
+    Derived { model, det }
 }

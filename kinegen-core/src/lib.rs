@@ -1,26 +1,33 @@
-//! kinegen's engine: the DH model, an exact polynomial core, symbolic forward
-//! kinematics and Jacobians as straight-line code, and Rust emission.
+//! kinegen's engine: a robot description in, closed-form kinematics code out.
 //!
-//! The `kinematics!` macro and the `kinegen` CLI are thin callers of [`generate()`].
+//! The modules are the pipeline's stages, in order (see `docs/ARCHITECTURE.md`):
+//!
+//! - [`model`]: what the engine is told — exact values, DH tables, validation, budget.
+//! - [`front`]: text front ends (TOML) with line-numbered errors.
+//! - [`chain`]: the engine's only input, a chain of elementary transforms; [`chain::dh`]
+//!   builds it from a DH table.
+//! - [`algebra`]: exact polynomials, straight-line code with normal forms, trigonometry.
+//! - [`kinematics`]: frames, Jacobians and determinants as straight-line code.
+//! - [`simplify`]: evaluation order, e-graph polish, sign moves — each rewrite checked.
+//! - [`emit`]: Rust, rustdoc, `FORMULAS`, LaTeX — printing only.
+//! - [`numeric`]: an independent numeric reference for the tests.
+//!
+//! [`generate()`] runs them; the `kinematics!` macro and the `kinegen` CLI are thin
+//! callers of it.
 
+pub mod algebra;
 pub mod chain;
-pub mod code;
-pub mod det;
-pub mod dh;
 pub mod emit;
+pub mod front;
 pub mod generate;
-pub mod graph;
-pub mod input;
-pub mod jacobian;
-pub mod latex;
+pub mod kinematics;
 pub mod model;
 pub mod numeric;
-pub mod polish;
-pub mod poly;
-pub mod signs;
-pub mod toml_input;
-pub mod trig;
-pub mod value;
+pub mod simplify;
 
-pub use dh::{validate, Robot};
-pub use generate::{generate, Budget, Generated, ItemHeader, Options};
+pub use chain::Chain;
+pub use emit::functions::Stats;
+pub use emit::rust::ItemHeader;
+pub use generate::{derive, generate, Derived, Generated};
+pub use model::dh::Robot;
+pub use model::options::{Budget, Deadline, Options};

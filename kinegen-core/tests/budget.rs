@@ -8,10 +8,12 @@
 
 use std::time::Instant;
 
-use kinegen_core::generate::Deadline;
-use kinegen_core::model::Model;
+use kinegen_core::kinematics::det::closed_form::determinant;
 use kinegen_core::numeric::{self, NumericRobot};
-use kinegen_core::{generate, toml_input, Generated, ItemHeader, Options, Robot};
+use kinegen_core::simplify::order;
+use kinegen_core::{
+    derive, front::toml_file, generate, Deadline, Derived, Generated, ItemHeader, Options, Robot,
+};
 
 /// SplitMix64: a tiny deterministic generator (no dependency, same numbers everywhere).
 struct Rng(u64);
@@ -105,13 +107,13 @@ fn general_6r(budget: &str) -> String {
 }
 
 fn load(src: &str) -> (Robot, Options) {
-    toml_input::load_str(src, "budget.toml").unwrap_or_else(|e| panic!("{e}\n{src}"))
+    toml_file::load_str(src, "budget.toml").unwrap_or_else(|e| panic!("{e}\n{src}"))
 }
 
 /// `generate`, timed (printed with `--nocapture`).
 fn timed_generate(what: &str, robot: &Robot, options: &Options) -> Generated {
     let start = Instant::now();
-    let g = generate(robot, &ItemHeader::public("Budgeted"), options);
+    let g = generate(&robot.chain(), &ItemHeader::public("Budgeted"), options);
     eprintln!(
         "{what}: generate {:?} (nodes = {}), notes: {:?}",
         start.elapsed(),
@@ -131,15 +133,16 @@ fn close(got: f64, want: f64, what: &str) {
 /// The engine's model (what `generate` emits, evaluated node by node) equals the numeric
 /// reference: FK, both Jacobians and, when there is one, the closed-form determinant.
 fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: usize) {
-    let mut model = Model::build(robot, options);
-    let det = model.determinant(robot).ok();
+    let chain = robot.chain();
+    let Derived { model, det } = derive(&chain, options);
+    let det = det.and_then(Result::ok);
     let num = NumericRobot::new(robot).unwrap();
     let n = robot.dof();
     for _ in 0..configurations {
         let q: Vec<f64> = (0..n).map(|_| rng.range(-3.0, 3.0)).collect();
         let t = num.fk(&q).unwrap();
         let fk: Vec<_> = model.fk_rows.iter().flatten().copied().collect();
-        let got = model.eval(robot, &q, &fk);
+        let got = model.eval(&chain, &q, &fk);
         for r in 0..3 {
             for c in 0..4 {
                 close(got[r * 4 + c], t[(r, c)], &format!("fk[{r}][{c}]"));
@@ -152,7 +155,7 @@ fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: 
             (&model.jacobian_ee, &jee, "Jee"),
         ] {
             let ids: Vec<_> = rows.iter().flatten().copied().collect();
-            let got = model.eval(robot, &q, &ids);
+            let got = model.eval(&chain, &q, &ids);
             for r in 0..6 {
                 for c in 0..n {
                     close(
@@ -165,7 +168,7 @@ fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: 
         }
         if let Some(d) = &det {
             let want = numeric::det(&num.task_jacobian(&q).unwrap()).unwrap();
-            let got = model.eval(robot, &q, &[d.node])[0];
+            let got = model.eval(&chain, &q, &[d.node])[0];
             close(got, want, "det J");
         }
     }
@@ -300,7 +303,7 @@ fn with_time_ms(mut options: Options, ms: u64) -> Options {
 
 fn panda() -> (Robot, Options) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots/panda.toml");
-    toml_input::load_file(&path).unwrap_or_else(|e| panic!("{e}"))
+    toml_file::load_file(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The notes that say the deadline passed, each naming one of [`PHASES`].
@@ -344,7 +347,7 @@ fn panda_past_the_deadline_from_the_start_is_correct_and_says_where() {
     );
     assert!(!g.pretty().contains("compile_error"));
     // Past the deadline no decision depends on the clock: the same code again.
-    let again = generate(&robot, &ItemHeader::public("Budgeted"), &options);
+    let again = generate(&robot.chain(), &ItemHeader::public("Budgeted"), &options);
     assert_eq!(g.pretty(), again.pretty());
     assert_eq!(g.notes, again.notes);
     check_model(&robot, &options, &mut Rng(70), 3);
@@ -400,11 +403,12 @@ fn past_the_deadline_the_determinant_is_the_numeric_one() {
     // The UR5's closed form exists within the budget; the same model past a deadline
     // set after its build gives it up, naming the phase.
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots/ur5.toml");
-    let (robot, options) = toml_input::load_file(&path).unwrap();
-    let model = Model::build(&robot, &options);
-    assert!(model.clone().determinant(&robot).is_ok());
+    let (robot, options) = toml_file::load_file(&path).unwrap();
+    let chain = robot.chain();
+    let model = order::build(&chain, &options);
+    assert!(determinant(&chain, &mut model.clone()).is_ok());
     let mut late = model;
-    late.chain.graph.deadline = Deadline::after_ms(0);
-    let why = late.determinant(&robot).unwrap_err();
+    late.sym.graph.deadline = Deadline::after_ms(0);
+    let why = determinant(&chain, &mut late).unwrap_err();
     assert!(why.contains(PHASES[3]), "{why}");
 }

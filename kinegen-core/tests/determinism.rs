@@ -10,12 +10,12 @@ use common::robot_files;
 
 use std::path::Path;
 
-use kinegen_core::{generate, toml_input, ItemHeader};
+use kinegen_core::{front::toml_file, generate, ItemHeader};
 
 /// Code and notes of one run.
 fn run(path: &Path) -> (String, Vec<String>) {
-    let (robot, options) = toml_input::load_file(path).unwrap_or_else(|e| panic!("{e}"));
-    let g = generate(&robot, &ItemHeader::public(&robot.name), &options);
+    let (robot, options) = toml_file::load_file(path).unwrap_or_else(|e| panic!("{e}"));
+    let g = generate(&robot.chain(), &ItemHeader::public(&robot.name), &options);
     (g.pretty(), g.notes)
 }
 

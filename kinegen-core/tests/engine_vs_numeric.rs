@@ -2,9 +2,13 @@
 //! reference (DH matrix products, `z × (p − o)` columns) on random tables and
 //! configurations: both conventions, prismatic joints, arbitrary twists, base and tool.
 
-use kinegen_core::dh::{validate, RawJoint, RawRobot, RawValue};
-use kinegen_core::model::Model;
+use kinegen_core::model::{
+    raw::{RawJoint, RawRobot, RawValue},
+    validate::validate,
+};
 use kinegen_core::numeric::NumericRobot;
+use kinegen_core::simplify::order;
+use kinegen_core::Deadline;
 use kinegen_core::{Options, Robot};
 use proptest::prelude::*;
 
@@ -101,12 +105,14 @@ fn robot_strategy() -> impl Strategy<Value = Robot> {
 /// must give the reference values; cases cycle through them.
 fn check(robot: &Robot, q: &[f64], pivot: usize) {
     let pivot = (pivot > 0).then_some(pivot);
-    let model = Model::build_with(robot, &Options::default(), pivot);
+    let chain = robot.chain();
+    let options = Options::default();
+    let model = order::variant(&chain, &options, pivot, Deadline::start(&options.budget));
     let num = NumericRobot::new(robot).unwrap();
     let n = robot.dof();
     let t = num.fk(q).unwrap();
     let fk: Vec<_> = model.fk_rows.iter().flatten().copied().collect();
-    let got = model.eval(robot, q, &fk);
+    let got = model.eval(&chain, q, &fk);
     for r in 0..3 {
         for c in 0..4 {
             assert!((got[r * 4 + c] - t[(r, c)]).abs() < 1e-9, "fk[{r}][{c}]");
@@ -115,7 +121,7 @@ fn check(robot: &Robot, q: &[f64], pivot: usize) {
     let frames = num.frames(q).unwrap();
     for (i, rows) in model.frame_rows.iter().enumerate() {
         let ids: Vec<_> = rows.iter().flatten().copied().collect();
-        let got = model.eval(robot, q, &ids);
+        let got = model.eval(&chain, q, &ids);
         for r in 0..3 {
             for c in 0..4 {
                 let want = frames[i][(r, c)];
@@ -130,7 +136,7 @@ fn check(robot: &Robot, q: &[f64], pivot: usize) {
     let jee = num.jacobian_ee(q).unwrap();
     for (rows, reference) in [(&model.jacobian, &j), (&model.jacobian_ee, &jee)] {
         let ids: Vec<_> = rows.iter().flatten().copied().collect();
-        let got = model.eval(robot, q, &ids);
+        let got = model.eval(&chain, q, &ids);
         for r in 0..6 {
             for c in 0..n {
                 assert!(

@@ -1,14 +1,14 @@
 //! The generated code of each reference robot, pinned: a change to the engine shows up
 //! here as a reviewable diff of the Rust users get.
 
-use kinegen_core::{generate, toml_input, ItemHeader};
+use kinegen_core::{front::toml_file, generate, ItemHeader};
 
 fn generated(file: &str) -> String {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../robots")
         .join(file);
-    let (robot, options) = toml_input::load_file(&path).unwrap();
-    let g = generate(&robot, &ItemHeader::public(&robot.name), &options);
+    let (robot, options) = toml_file::load_file(&path).unwrap();
+    let g = generate(&robot.chain(), &ItemHeader::public(&robot.name), &options);
     g.pretty()
 }
 

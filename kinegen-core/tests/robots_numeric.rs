@@ -5,8 +5,8 @@
 mod common;
 use common::robot_files;
 
+use kinegen_core::front::toml_file::load_file;
 use kinegen_core::numeric::NumericRobot;
-use kinegen_core::toml_input::load_file;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 
@@ -132,10 +132,10 @@ fn jacobians_agree_within_the_joint_limits() {
             .iter()
             .map(|j| match (j.limits, j.kind) {
                 (Some([lo, hi]), _) => (lo, hi),
-                (None, kinegen_core::dh::JointKind::Revolute) => {
+                (None, kinegen_core::model::robot::JointKind::Revolute) => {
                     (-std::f64::consts::PI, std::f64::consts::PI)
                 }
-                (None, kinegen_core::dh::JointKind::Prismatic) => (-0.5, 0.5),
+                (None, kinegen_core::model::robot::JointKind::Prismatic) => (-0.5, 0.5),
             })
             .collect();
         let strategy = proptest::collection::vec(0.0..1.0f64, ranges.len());

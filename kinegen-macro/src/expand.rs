@@ -3,9 +3,11 @@
 
 use std::path::PathBuf;
 
-use kinegen_core::dh::{validate, DhError, Path, PathSeg, RawRobot};
-use kinegen_core::toml_input::RawFile;
-use kinegen_core::{input, Budget, ItemHeader, Options};
+use kinegen_core::front::toml_file::RawFile;
+use kinegen_core::model::input;
+use kinegen_core::model::raw::{DhError, Path, PathSeg, RawRobot};
+use kinegen_core::model::validate::validate;
+use kinegen_core::{Budget, ItemHeader, Options};
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::LitStr;
@@ -89,7 +91,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         budget: budget.unwrap_or_else(Budget::default),
         ..Options::default()
     };
-    let generated = kinegen_core::generate(&robot, &header, &options);
+    let generated = kinegen_core::generate(&robot.chain(), &header, &options);
     let tokens = generated.tokens;
     let warnings = crate::warnings::warnings(
         &generated.notes,
@@ -119,7 +121,7 @@ fn read(lit: &LitStr) -> syn::Result<(PathBuf, String)> {
     }
 }
 
-fn file_error(lit: &LitStr, err: kinegen_core::toml_input::LoadError) -> syn::Error {
+fn file_error(lit: &LitStr, err: kinegen_core::front::toml_file::LoadError) -> syn::Error {
     let errors = err
         .errors
         .iter()

@@ -6,11 +6,12 @@
 //!                                           // base, tool, scalar, budget
 //! ```
 //! Values are token expressions (`pi/2`, `-a2`, `0.5*L1`), turned into text for
-//! `kinegen_core::value::parse_value`; only the *shape* (which keys, lists, rows) is
-//! checked here. The DH rules are `kinegen_core::dh::validate`'s.
+//! `kinegen_core::model::value::parse_value`; only the *shape* (which keys, lists, rows) is
+//! checked here. The DH rules are `kinegen_core::model::validate::validate`'s.
 
-use kinegen_core::dh::{DhError, Path, RawJoint, RawRobot, RawValue};
-use kinegen_core::{input, Budget};
+use kinegen_core::model::input;
+use kinegen_core::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
+use kinegen_core::Budget;
 use proc_macro2::{Delimiter, Group, TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::ext::IdentExt;

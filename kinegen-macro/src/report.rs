@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use kinegen_core::dh::{DhError, Path};
+use kinegen_core::model::raw::{DhError, Path};
 use proc_macro2::TokenStream;
 
 /// The tokens of every entry, by path. Tokens rather than a `Span`: joining spans is

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 
 fn load(file: &str) -> kinegen_core::Robot {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
-    kinegen_core::toml_input::load_file(&path).unwrap().0
+    kinegen_core::front::toml_file::load_file(&path).unwrap().0
 }
 
 fn close(a: f64, b: f64, what: &str) {

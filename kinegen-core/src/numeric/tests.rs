@@ -4,7 +4,8 @@ use nalgebra::Rotation3;
 use proptest::prelude::*;
 
 use super::*;
-use crate::dh::{validate, RawJoint, RawRobot, RawValue};
+use crate::model::raw::{RawJoint, RawRobot, RawValue};
+use crate::model::validate::validate;
 
 fn t(s: &str) -> RawValue {
     RawValue::Text(s.to_string())

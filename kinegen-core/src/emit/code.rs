@@ -7,14 +7,16 @@
 //! angle (and every angle of an f32 robot) with one `sin_cos` each; intermediates
 //! whose value is the sine or cosine of a sum of joint angles are named after it (`c23`).
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt::Write;
 
-use crate::chain::{AngleSource, Chain};
-use crate::dh::{JointKind, Robot, Scalar};
-use crate::graph::{Graph, Id, Node};
-use crate::poly::{Poly, VarKind};
-use crate::value::{rat_to_f64, Value};
+use crate::algebra::angles::AngleSource;
+use crate::algebra::graph::{Graph, Id, Node};
+use crate::algebra::poly::{Poly, VarKind};
+use crate::chain::Chain;
+use crate::kinematics::frames::SymbolicChain;
+use crate::model::robot::{JointKind, Scalar};
+use crate::model::value::{rat_to_f64, Value};
 
 /// Operation counts of generated code (a subtraction counts as an add; a `sin_cos`
 /// counts one trig).
@@ -57,8 +59,8 @@ const MAX_INLINE_DEPTH: usize = 12;
 
 /// Emits bodies for one chain.
 pub struct Coder<'a> {
-    robot: &'a Robot,
     chain: &'a Chain,
+    sym: &'a SymbolicChain,
     /// Names of angle-sum values by normal form.
     sum_names: HashMap<Poly, String>,
     /// Terms of the longest of them.
@@ -67,21 +69,21 @@ pub struct Coder<'a> {
 }
 
 impl<'a> Coder<'a> {
-    /// A coder for `chain`.
-    pub fn new(robot: &'a Robot, chain: &'a Chain) -> Self {
-        let sum_names = angle_sum_names(robot, chain);
+    /// A coder for the symbolic frames `sym` of `chain`.
+    pub fn new(chain: &'a Chain, sym: &'a SymbolicChain) -> Self {
+        let sum_names = angle_sum_names(chain, sym);
         let longest_sum = sum_names.keys().map(Poly::len).max().unwrap_or(0);
         Coder {
             longest_sum,
-            robot,
             chain,
+            sym,
             sum_names,
-            scalar: robot.scalar,
+            scalar: chain.scalar,
         }
     }
 
     fn g(&self) -> &Graph {
-        &self.chain.graph
+        &self.sym.graph
     }
 
     /// The floating-point type name.
@@ -123,28 +125,45 @@ impl<'a> Coder<'a> {
         parts.join(" + ")
     }
 
-    /// The body computing `outputs`.
+    /// The body computing `outputs`: inputs, shared intermediates, outputs.
     pub fn body(&self, outputs: &[Id]) -> Body {
+        let (uses, seen) = self.reachable(outputs);
+        let mut body = Body::default();
+        self.inputs(&seen, &mut body);
+        let names = self.intermediates(&uses, &mut body);
+        for &o in outputs {
+            let (e, _) = self.expr(o, &names, &mut body.ops);
+            body.outputs.push(e);
+        }
+        body
+    }
+
+    /// Nodes reachable from `outputs` with their use counts, and the set of them.
+    fn reachable(&self, outputs: &[Id]) -> (BTreeMap<Id, usize>, BTreeSet<Id>) {
         let g = self.g();
-        // Reachable nodes and their use counts.
         let mut uses: BTreeMap<Id, usize> = BTreeMap::new();
         let mut stack: Vec<Id> = outputs.to_vec();
         for &o in outputs {
             *uses.entry(o).or_default() += 1;
         }
-        let mut seen = std::collections::BTreeSet::new();
+        let mut seen = BTreeSet::new();
         while let Some(id) = stack.pop() {
             if !seen.insert(id) {
                 continue;
             }
-            for c in children(g.node(id)) {
+            for c in g.node(id).children() {
                 *uses.entry(c).or_default() += 1;
                 stack.push(c);
             }
         }
-        let mut body = Body::default();
-        let mut names: HashMap<Id, String> = HashMap::new();
-        // Inputs: joint values, parameters, sines and cosines.
+        (uses, seen)
+    }
+
+    /// `let`s for the inputs the body reads: parameters, prismatic joint values, and
+    /// the sines and cosines (the f64 joint angles in one batched `sin_cos_n` call,
+    /// which goes where the first of them would have gone).
+    fn inputs(&self, seen: &BTreeSet<Id>, body: &mut Body) {
+        let g = self.g();
         let mut used_vars: Vec<u32> = seen
             .iter()
             .filter_map(|&id| match g.node(id) {
@@ -153,21 +172,20 @@ impl<'a> Coder<'a> {
             })
             .collect();
         used_vars.sort_unstable();
-        for (name, v) in &self.chain.param_vars {
+        for (name, v) in &self.sym.param_vars {
             if used_vars.contains(v) {
                 body.lets.push(format!("let {name} = self.{name};"));
             }
         }
-        for (j, v) in &self.chain.joint_vars {
+        for (j, v) in &self.sym.joint_vars {
             if used_vars.contains(v) {
                 body.lets.push(format!("let q{} = q[{j}];", j + 1));
             }
         }
-        // f64 joint angles: `(sine, cosine, argument)` for one batched `sin_cos_n` call,
-        // which goes where the first of them would have gone.
+        // `(sine, cosine, argument)` of the batched f64 joint angles.
         let mut batch: Vec<(String, String, String)> = Vec::new();
         let mut batch_at = None;
-        for a in &self.chain.angles {
+        for a in &self.sym.angles {
             let (s, c) = a.vars;
             if !(used_vars.contains(&s) || used_vars.contains(&c)) {
                 continue;
@@ -177,10 +195,17 @@ impl<'a> Coder<'a> {
             let (sp, cp) = (name(s, sn), name(c, cn));
             let pat = format!("({sp}, {cp})");
             let rhs = match &a.source {
-                AngleSource::Joint { joint, offset } => {
+                AngleSource::Joint {
+                    joint,
+                    sign,
+                    offset,
+                } => {
                     body.ops.trig += 1;
                     let arg = if offset.is_zero() {
                         format!("q[{joint}]")
+                    } else if *sign < 0 {
+                        body.ops.add += 1;
+                        format!("{} - q[{joint}]", self.value_expr(offset))
                     } else {
                         body.ops.add += 1;
                         format!("q[{joint}] + {}", self.value_expr(offset))
@@ -193,7 +218,7 @@ impl<'a> Coder<'a> {
                     format!("{}({arg})", self.sin_cos_fn())
                 }
                 AngleSource::Constant(v) if v.is_constant() => {
-                    let x = self.robot.eval(v);
+                    let x = self.chain.eval(v);
                     format!("({}, {})", self.lit(x.sin()), self.lit(x.cos()))
                 }
                 AngleSource::Constant(v) => {
@@ -206,11 +231,17 @@ impl<'a> Coder<'a> {
         if let Some(at) = batch_at {
             body.lets.insert(at, batched_sin_cos(&batch));
         }
-        // Shared intermediates; also long single-use chains (a sum of many terms),
-        // cut every few levels so lines stay readable and emission stays shallow.
+    }
+
+    /// `let`s for shared intermediates; also for long single-use chains (a sum of many
+    /// terms), cut every few levels so lines stay readable and emission stays shallow.
+    /// Returns the name of every bound node.
+    fn intermediates(&self, uses: &BTreeMap<Id, usize>, body: &mut Body) -> HashMap<Id, String> {
+        let g = self.g();
+        let mut names: HashMap<Id, String> = HashMap::new();
         let mut temp = 0usize;
         let mut depth: HashMap<Id, usize> = HashMap::new();
-        for (&id, &n) in &uses {
+        for (&id, &n) in uses {
             let node = g.node(id);
             let shared = n >= 2
                 && match node {
@@ -222,7 +253,8 @@ impl<'a> Coder<'a> {
             let d = match node {
                 Node::Num(_) | Node::Leaf(_) => 0,
                 _ => {
-                    1 + children(node)
+                    1 + node
+                        .children()
                         .iter()
                         .map(|c| depth.get(c).copied().unwrap_or(0))
                         .max()
@@ -235,31 +267,31 @@ impl<'a> Coder<'a> {
                 continue;
             }
             let (expr, _) = self.expr(id, &names, &mut body.ops);
-            let name = g
-                .nf(id)
-                // Angle sums are small: don't hash the big normal forms.
-                .filter(|p| p.len() <= self.longest_sum)
-                .and_then(|p| {
-                    // The sign pass may compute −c234 instead: `nc234`.
-                    self.sum_names
-                        .get(p)
-                        .cloned()
-                        .or_else(|| self.sum_names.get(&p.neg()).map(|n| format!("n{n}")))
-                })
-                .filter(|n| !names.values().any(|m| m == n))
-                .unwrap_or_else(|| {
-                    temp += 1;
-                    format!("t{temp}")
-                });
+            let name = self.sum_name(id, &names).unwrap_or_else(|| {
+                temp += 1;
+                format!("t{temp}")
+            });
             body.lets.push(format!("let {name} = {expr};"));
             body.defs.push((name.clone(), expr));
             names.insert(id, name);
         }
-        for &o in outputs {
-            let (e, _) = self.expr(o, &names, &mut body.ops);
-            body.outputs.push(e);
-        }
-        body
+        names
+    }
+
+    /// `c23` for a node whose value is cos(q2 + q3) (`nc23` for its negation, which the
+    /// sign pass may compute instead), unless the name is taken.
+    fn sum_name(&self, id: Id, names: &HashMap<Id, String>) -> Option<String> {
+        self.g()
+            .nf(id)
+            // Angle sums are small: don't hash the big normal forms.
+            .filter(|p| p.len() <= self.longest_sum)
+            .and_then(|p| {
+                self.sum_names
+                    .get(p)
+                    .cloned()
+                    .or_else(|| self.sum_names.get(&p.neg()).map(|n| format!("n{n}")))
+            })
+            .filter(|n| !names.values().any(|m| m == n))
     }
 
     /// The scalar `sin_cos` of the robot's float type.
@@ -363,32 +395,21 @@ fn batched_sin_cos(batch: &[(String, String, String)]) -> String {
     )
 }
 
-/// The children of a node.
-pub fn children(n: &Node) -> Vec<Id> {
-    match n {
-        Node::Num(_) | Node::Leaf(_) => vec![],
-        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => vec![*a, *b],
-        Node::Neg(a) => vec![*a],
-    }
-}
-
 /// Largest expansion of an angle sum given a name (sums of up to 8 angles).
 const MAX_NAMED_SUM_TERMS: usize = 128;
 
 /// Normal forms of sin/cos of sums of consecutive revolute joint angles → `s23`, `c23`.
-pub(crate) fn angle_sum_names(robot: &Robot, chain: &Chain) -> HashMap<Poly, String> {
-    let g = &chain.graph;
-    let ring = &g.ring;
-    let joint_angle: Vec<Option<(Poly, Poly)>> = robot
-        .joints
-        .iter()
+pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Poly, String> {
+    let ring = &sym.graph.ring;
+    let joint_angle: Vec<Option<(Poly, Poly)>> = chain
+        .kinds()
         .enumerate()
-        .map(|(i, j)| {
-            if j.kind != JointKind::Revolute {
+        .map(|(i, kind)| {
+            if kind != JointKind::Revolute {
                 return None;
             }
-            chain.angles.iter().find_map(|a| match &a.source {
-                AngleSource::Joint { joint, offset } if *joint == i && offset.is_zero() => {
+            sym.angles.iter().find_map(|a| match &a.source {
+                AngleSource::Joint { joint, offset, .. } if *joint == i && offset.is_zero() => {
                     Some((Poly::var(a.vars.0), Poly::var(a.vars.1)))
                 }
                 _ => None,
@@ -412,7 +433,7 @@ pub(crate) fn angle_sum_names(robot: &Robot, chain: &Chain) -> HashMap<Poly, Str
             let nc = ring.mul(&c, c2).sub(&ring.mul(&s, s2));
             s = ns;
             c = nc;
-            let sep = if robot.dof() >= 10 { "_" } else { "" };
+            let sep = if chain.dof() >= 10 { "_" } else { "" };
             let _ = write!(label, "{sep}{}", k + 1);
             out.entry(s.clone()).or_insert(format!("s{label}"));
             out.entry(c.clone()).or_insert(format!("c{label}"));

@@ -13,12 +13,14 @@ use std::collections::HashMap;
 
 use num_traits::{One, Signed, Zero};
 
+use crate::algebra::graph::{Graph, Id};
+use crate::algebra::poly::{Poly, Ring, TooLarge};
 use crate::chain::Chain;
-use crate::dh::{JointKind, Robot};
-use crate::graph::Id;
-use crate::jacobian::cross;
-use crate::poly::{Poly, Ring, TooLarge};
-use crate::value::Rat;
+use crate::kinematics::frames::SymbolicChain;
+use crate::kinematics::transform::cross;
+use crate::model::options::Deadline;
+use crate::model::robot::JointKind;
+use crate::model::value::Rat;
 
 /// A determinant as `constant · Π factors`, each factor in normal form.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,6 +32,13 @@ pub struct Factored {
 }
 
 impl Factored {
+    fn zero() -> Self {
+        Factored {
+            constant: Rat::zero(),
+            factors: Vec::new(),
+        }
+    }
+
     fn one() -> Self {
         Factored {
             constant: Rat::one(),
@@ -98,7 +107,7 @@ pub enum DetError {
     NotSquare,
     /// Expressions grew past the term budget.
     TooLarge,
-    /// The engine's deadline ([`crate::generate::Deadline`]) passed first.
+    /// The engine's deadline ([`Deadline`]) passed first.
     Deadline,
 }
 
@@ -111,11 +120,11 @@ pub const MAX_DET_TERMS: usize = 400;
 
 /// The square Jacobian whose determinant is taken: the full 6×N for N = 6, or the task
 /// rows when they are as many as the joints.
-pub fn square_rows(robot: &Robot) -> Option<Vec<usize>> {
-    match &robot.task {
-        Some(t) if t.len() == robot.dof() => Some(t.iter().map(|r| r.index()).collect()),
-        None if robot.dof() == 6 => Some((0..6).collect()),
-        Some(_) if robot.dof() == 6 => Some((0..6).collect()),
+pub fn square_rows(chain: &Chain) -> Option<Vec<usize>> {
+    match &chain.task {
+        Some(t) if t.len() == chain.dof() => Some(t.iter().map(|r| r.index()).collect()),
+        None if chain.dof() == 6 => Some((0..6).collect()),
+        Some(_) if chain.dof() == 6 => Some((0..6).collect()),
         _ => None,
     }
 }
@@ -127,62 +136,83 @@ pub fn square_rows(robot: &Robot) -> Option<Vec<usize>> {
 /// is tried; for a task Jacobian only frames (its linear rows depend on the point), and
 /// only frames that rotate about world z when the task has rows other than all six.
 ///
-/// Once the deadline of the chain's graph has passed it gives up with
-/// [`DetError::Deadline`] (the caller then emits a numeric determinant).
-pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<Factored, DetError> {
-    let n = robot.dof();
-    if rows.len() != n {
+/// Once the deadline of the graph has passed it gives up with [`DetError::Deadline`]
+/// (the caller then emits a numeric determinant).
+pub fn determinant(
+    chain: &Chain,
+    sym: &mut SymbolicChain,
+    rows: &[usize],
+) -> Result<Factored, DetError> {
+    if rows.len() != chain.dof() {
         return Err(DetError::NotSquare);
     }
-    if chain.graph.past_deadline() {
+    if sym.graph.past_deadline() {
         return Err(DetError::Deadline);
     }
-    let full = rows.len() == 6;
-    let mut points: Vec<[Id; 3]> = vec![chain.tool.p];
-    let mut frames: Vec<[[Id; 3]; 3]> = vec![identity_cols(chain)];
-    if full {
-        // Points on the last axes (the wrist) and middle frames give the sparsest
-        // matrices; the other choices only cost time.
-        let n = chain.frames.len();
-        points.extend(chain.frames[n.saturating_sub(4)..].iter().map(|t| t.p));
-        frames.extend(
-            chain.frames[..n.saturating_sub(2).max(1)]
-                .iter()
-                .map(|t| t.cols),
-        );
-    } else {
-        // A task Jacobian is invariant only under rotations that map its rows to
-        // themselves: rotations about world z when the rows are x, y (, z, rz).
-        let planar = rows.iter().all(|&r| r != 3 && r != 4);
-        if planar {
-            for t in &chain.frames {
-                let z = chain.graph.int(0);
-                let one = chain.graph.int(1);
-                if t.cols[2] == [z, z, one] {
-                    frames.push(t.cols);
-                }
-            }
-        }
-    }
-    // A determinant worth a closed form is small; past this many terms in any
-    // intermediate the numeric LU is cheaper anyway, so give up early.
-    let max_terms = chain.graph.max_terms.min(MAX_DET_TERMS);
+    let candidates = sparsest(chain, sym, rows)?;
     let mut best: Option<(Factored, (usize, usize))> = None;
     let mut reference: Option<Poly> = None;
-    // Rank the choices by sparsity (zeros, then terms) and expand only the best few.
+    // A determinant worth a closed form is small; past this many terms in any
+    // intermediate the numeric LU is cheaper anyway, so give up early.
+    let max_terms = sym.graph.max_terms.min(MAX_DET_TERMS);
+    for m in candidates {
+        let mut memo = HashMap::new();
+        let all: u32 = (1 << chain.dof()) - 1;
+        let deadline = sym.graph.deadline;
+        let lim = Limits {
+            ring: &sym.graph.ring,
+            max_terms,
+            deadline: &deadline,
+        };
+        let r = det_rec(&lim, &m, all, all, &mut memo);
+        if sym.graph.past_deadline() {
+            return Err(DetError::Deadline);
+        }
+        let Ok(mut f) = r else {
+            continue;
+        };
+        f.sort();
+        let expanded = f
+            .expand(&sym.graph.ring, max_terms)
+            .map_err(|_| DetError::TooLarge)?;
+        // Every frame and point must give the same polynomial.
+        match &reference {
+            None => reference = Some(expanded),
+            Some(r) if *r != expanded => return Err(DetError::TooLarge),
+            Some(_) => {}
+        }
+        let score = (usize::MAX - f.factors.len(), f.size());
+        if best.as_ref().is_none_or(|(_, s)| score < *s) {
+            best = Some((f, score));
+        }
+    }
+    match best {
+        Some((f, _)) => Ok(f),
+        None if sym.graph.past_deadline() => Err(DetError::Deadline),
+        None => Err(DetError::TooLarge),
+    }
+}
+
+/// The matrices of the few sparsest frame/point choices (zeros, then terms), in order.
+fn sparsest(
+    chain: &Chain,
+    sym: &mut SymbolicChain,
+    rows: &[usize],
+) -> Result<Vec<Vec<Vec<Poly>>>, DetError> {
+    let (points, frames) = choices(sym, rows);
     type Scored = ((usize, usize), Vec<Vec<Poly>>);
     let mut candidates: Vec<Scored> = Vec::new();
     for point in &points {
         for cols in &frames {
-            if chain.graph.past_deadline() {
+            if sym.graph.past_deadline() {
                 return Err(DetError::Deadline);
             }
             // Entries past the determinant's budget cannot give a small closed form:
             // cap the normal forms while building the matrix so they stop early.
-            let saved = chain.graph.max_terms;
-            chain.graph.max_terms = saved.min(MAX_DET_TERMS);
-            let m = matrix(robot, chain, rows, *point, cols);
-            chain.graph.max_terms = saved;
+            let saved = sym.graph.max_terms;
+            sym.graph.max_terms = saved.min(MAX_DET_TERMS);
+            let m = matrix(chain, sym, rows, *point, cols);
+            sym.graph.max_terms = saved;
             if let Some(m) = m {
                 let nonzero = m.iter().flatten().filter(|p| !p.is_zero()).count();
                 let terms = m.iter().flatten().map(Poly::len).sum::<usize>();
@@ -192,84 +222,71 @@ pub fn determinant(robot: &Robot, chain: &mut Chain, rows: &[usize]) -> Result<F
     }
     candidates.sort_by_key(|(score, _)| *score);
     candidates.truncate(3);
-    {
-        for (_, m) in candidates {
-            let mut memo = HashMap::new();
-            let all_rows: u32 = (1 << n) - 1;
-            let deadline = chain.graph.deadline;
-            let r = det_rec(
-                &Limits {
-                    ring: &chain.graph.ring,
-                    max_terms,
-                    deadline: &deadline,
-                },
-                &m,
-                all_rows,
-                all_rows,
-                &mut memo,
-            );
-            if chain.graph.past_deadline() {
-                return Err(DetError::Deadline);
-            }
-            let Ok(mut f) = r else {
-                continue;
-            };
-            f.sort();
-            let expanded = f
-                .expand(&chain.graph.ring, max_terms)
-                .map_err(|_| DetError::TooLarge)?;
-            match &reference {
-                None => reference = Some(expanded),
-                Some(r) => {
-                    // Every frame and point must give the same polynomial.
-                    if *r != expanded {
-                        return Err(DetError::TooLarge);
-                    }
+    Ok(candidates.into_iter().map(|(_, m)| m).collect())
+}
+
+/// Reference points and frames (rotation columns) the determinant may be taken in.
+#[allow(clippy::type_complexity)]
+fn choices(sym: &mut SymbolicChain, rows: &[usize]) -> (Vec<[Id; 3]>, Vec<[[Id; 3]; 3]>) {
+    let mut points: Vec<[Id; 3]> = vec![sym.tool.p];
+    let mut frames: Vec<[[Id; 3]; 3]> = vec![identity_cols(&mut sym.graph)];
+    if rows.len() == 6 {
+        // Points on the last axes (the wrist) and middle frames give the sparsest
+        // matrices; the other choices only cost time.
+        let n = sym.frames.len();
+        points.extend(sym.frames[n.saturating_sub(4)..].iter().map(|t| t.p));
+        frames.extend(
+            sym.frames[..n.saturating_sub(2).max(1)]
+                .iter()
+                .map(|t| t.cols),
+        );
+    } else {
+        // A task Jacobian is invariant only under rotations that map its rows to
+        // themselves: rotations about world z when the rows are x, y (, z, rz).
+        let planar = rows.iter().all(|&r| r != 3 && r != 4);
+        if planar {
+            for t in &sym.frames {
+                let z = sym.graph.int(0);
+                let one = sym.graph.int(1);
+                if t.cols[2] == [z, z, one] {
+                    frames.push(t.cols);
                 }
-            }
-            let score = (usize::MAX - f.factors.len(), f.size());
-            if best.as_ref().is_none_or(|(_, s)| score < *s) {
-                best = Some((f, score));
             }
         }
     }
-    match best {
-        Some((f, _)) => Ok(f),
-        None if chain.graph.past_deadline() => Err(DetError::Deadline),
-        None => Err(DetError::TooLarge),
-    }
+    (points, frames)
 }
 
-fn identity_cols(chain: &mut Chain) -> [[Id; 3]; 3] {
-    let (o, l) = (chain.graph.int(0), chain.graph.int(1));
+fn identity_cols(g: &mut Graph) -> [[Id; 3]; 3] {
+    let (o, l) = (g.int(0), g.int(1));
     [[l, o, o], [o, l, o], [o, o, l]]
 }
 
 /// Rows `rows` of J about `point`, expressed in the frame with rotation columns `cols`.
 fn matrix(
-    robot: &Robot,
-    chain: &mut Chain,
+    chain: &Chain,
+    sym: &mut SymbolicChain,
     rows: &[usize],
     point: [Id; 3],
     cols: &[[Id; 3]; 3],
 ) -> Option<Vec<Vec<Poly>>> {
-    let n = robot.dof();
-    let g = &mut chain.graph;
+    let n = chain.dof();
+    let g = &mut sym.graph;
     // Inputs past the determinant's budget: no closed form from this choice, and
     // multiplying their normal forms out would only cost time.
-    let small = |g: &crate::graph::Graph, ids: &[Id]| {
+    let small = |g: &Graph, ids: &[Id]| {
         ids.iter()
             .all(|&id| g.nf(id).is_some_and(|p| p.len() <= MAX_DET_INPUT_TERMS))
     };
     let flat: Vec<Id> = cols.iter().flatten().copied().chain(point).collect();
-    if !small(g, &flat) || !chain.axes.iter().all(|(z, o)| small(g, z) && small(g, o)) {
+    if !small(g, &flat) || !sym.axes.iter().all(|(z, o)| small(g, z) && small(g, o)) {
         return None;
     }
     let zero = g.int(0);
     let mut m = vec![vec![Poly::zero(); n]; rows.len()];
-    for (i, joint) in robot.joints.iter().enumerate() {
-        let (z, o) = chain.axes[i];
-        let (lin, ang) = match joint.kind {
+    for (i, kind) in chain.kinds().enumerate() {
+        let (z, o) = sym.axes[i];
+        let (lin, ang) = match kind {
             JointKind::Revolute => {
                 let r = [
                     g.sub(point[0], o[0]),
@@ -303,7 +320,7 @@ struct Limits<'a> {
     /// Largest intermediate (terms).
     max_terms: usize,
     /// Past it, give up (the caller reports [`DetError::Deadline`]).
-    deadline: &'a crate::generate::Deadline,
+    deadline: &'a Deadline,
 }
 
 /// Determinant of the submatrix on `rows` × `cols` (bit sets), factored.
@@ -323,29 +340,11 @@ fn det_rec(
     if lim.deadline.passed() {
         return Err(TooLarge);
     }
-    let (ring, max_terms) = (lim.ring, lim.max_terms);
     let ri: Vec<usize> = bits(rows);
     let ci: Vec<usize> = bits(cols);
-    // The line (row or column) with the fewest nonzeros.
-    let mut best: Option<(usize, bool, usize)> = None; // (count, is_row, index)
-    for &r in &ri {
-        let k = ci.iter().filter(|&&c| !m[r][c].is_zero()).count();
-        if best.is_none_or(|b| k < b.0) {
-            best = Some((k, true, r));
-        }
-    }
-    for &c in &ci {
-        let k = ri.iter().filter(|&&r| !m[r][c].is_zero()).count();
-        if best.is_none_or(|b| k < b.0) {
-            best = Some((k, false, c));
-        }
-    }
-    let (count, is_row, line) = best.expect("nonempty");
+    let (count, is_row, line) = sparsest_line(m, &ri, &ci);
     let result = if count == 0 {
-        Factored {
-            constant: Rat::zero(),
-            factors: Vec::new(),
-        }
+        Factored::zero()
     } else {
         // Laplace along the line; a single entry becomes a factor.
         let others: Vec<usize> = if is_row { ci.clone() } else { ri.clone() };
@@ -372,49 +371,62 @@ fn det_rec(
             terms.push(f.mul(minor));
         }
         match terms.len() {
-            0 => Factored {
-                constant: Rat::zero(),
-                factors: Vec::new(),
-            },
+            0 => Factored::zero(),
             1 => terms.pop().expect("one term"),
-            _ => {
-                // A sum: pull out factors common to all terms, expand the rest.
-                let common = common_factors(&terms);
-                let mut sum = Poly::zero();
-                for t in &terms {
-                    let mut rest = t.factors.clone();
-                    for c in &common {
-                        if let Some(i) = rest.iter().position(|x| x == c) {
-                            rest.remove(i);
-                        }
-                    }
-                    let mut p = Poly::constant(t.constant.clone());
-                    for x in &rest {
-                        p = ring.mul_bounded(&p, x, max_terms)?;
-                    }
-                    sum = sum.add(&p);
-                    if sum.len() > max_terms {
-                        return Err(TooLarge);
-                    }
-                }
-                let mut f = Factored::one();
-                for c in common {
-                    f.factors.push(c);
-                }
-                if sum.is_zero() {
-                    Factored {
-                        constant: Rat::zero(),
-                        factors: Vec::new(),
-                    }
-                } else {
-                    f.push(sum);
-                    f
-                }
-            }
+            _ => sum(lim, &terms)?,
         }
     };
     memo.insert((rows, cols), result.clone());
     Ok(result)
+}
+
+/// The line (row or column) of the submatrix with the fewest nonzeros:
+/// `(count, is_row, index)`.
+fn sparsest_line(m: &[Vec<Poly>], ri: &[usize], ci: &[usize]) -> (usize, bool, usize) {
+    let mut best: Option<(usize, bool, usize)> = None;
+    for &r in ri {
+        let k = ci.iter().filter(|&&c| !m[r][c].is_zero()).count();
+        if best.is_none_or(|b| k < b.0) {
+            best = Some((k, true, r));
+        }
+    }
+    for &c in ci {
+        let k = ri.iter().filter(|&&r| !m[r][c].is_zero()).count();
+        if best.is_none_or(|b| k < b.0) {
+            best = Some((k, false, c));
+        }
+    }
+    best.expect("a nonempty submatrix")
+}
+
+/// A sum of Laplace terms: the factors common to all of them pulled out, the rest
+/// expanded in normal form.
+fn sum(lim: &Limits, terms: &[Factored]) -> Result<Factored, TooLarge> {
+    let common = common_factors(terms);
+    let mut sum = Poly::zero();
+    for t in terms {
+        let mut rest = t.factors.clone();
+        for c in &common {
+            if let Some(i) = rest.iter().position(|x| x == c) {
+                rest.remove(i);
+            }
+        }
+        let mut p = Poly::constant(t.constant.clone());
+        for x in &rest {
+            p = lim.ring.mul_bounded(&p, x, lim.max_terms)?;
+        }
+        sum = sum.add(&p);
+        if sum.len() > lim.max_terms {
+            return Err(TooLarge);
+        }
+    }
+    if sum.is_zero() {
+        return Ok(Factored::zero());
+    }
+    let mut f = Factored::one();
+    f.factors.extend(common);
+    f.push(sum);
+    Ok(f)
 }
 
 fn common_factors(terms: &[Factored]) -> Vec<Poly> {

@@ -29,11 +29,11 @@
 //! ```
 //!
 //! The file is read into a [`RawRobot`] with the byte span of every entry, checked by
-//! [`crate::dh::validate`], and every error's path is mapped back to a line:
+//! [`crate::model::validate::validate`], and every error's path is mapped back to a line:
 //!
 //! ```
 //! let src = "name = \"R\"\nconvention = \"standard\"\n[[joints]]\ntype = \"revolute\"\na = 1\nalhpa = 0\nd = 0\n";
-//! let err = kinegen_core::toml_input::load_str(src, "r.toml").unwrap_err();
+//! let err = kinegen_core::front::toml_file::load_str(src, "r.toml").unwrap_err();
 //! assert_eq!(
 //!     err.to_string(),
 //!     "r.toml:3: joints[0]: missing column `alpha`\n\
@@ -49,9 +49,11 @@ use std::path::Path as FsPath;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
-use crate::dh::{validate, DhError, Path, RawJoint, RawRobot, RawValue, Robot};
-use crate::generate::{Budget, Options};
-use crate::input;
+use crate::model::dh::Robot;
+use crate::model::input;
+use crate::model::options::{Budget, Options};
+use crate::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
+use crate::model::validate::validate;
 
 /// An error at a line of a file: renders as `file:LINE: path: message`.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -152,7 +154,7 @@ pub struct RawFile {
     /// Top-level keys present in the file.
     pub keys: Vec<String>,
     /// Entries of the wrong kind (a string where a table belongs, unknown keys, …),
-    /// to be reported with [`crate::dh::validate`]'s errors through
+    /// to be reported with [`crate::model::validate::validate`]'s errors through
     /// [`input::combine_errors`].
     pub shape_errors: Vec<DhError>,
     label: String,
@@ -163,7 +165,7 @@ pub struct RawFile {
 impl RawFile {
     /// Parse TOML text into a raw robot. Fails only on TOML syntax errors; entries of
     /// the wrong shape are left out of [`RawFile::robot`] and listed in
-    /// [`RawFile::shape_errors`]; the DH rules are left to [`crate::dh::validate`].
+    /// [`RawFile::shape_errors`]; the DH rules are left to [`crate::model::validate::validate`].
     pub fn parse(src: &str, file_label: &str) -> Result<RawFile, LoadError> {
         let line_starts = std::iter::once(0)
             .chain(src.match_indices('\n').map(|(i, _)| i + 1))
@@ -522,7 +524,8 @@ impl Reader<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dh::{Convention, JointKind, TaskRow};
+    use crate::model::dh::Convention;
+    use crate::model::robot::{JointKind, TaskRow};
 
     const GOOD: &str = r#"
 name = "planar RR"
@@ -575,7 +578,7 @@ time_ms = 300
         assert_eq!(robot.joints[1].kind, JointKind::Prismatic);
         assert_eq!(robot.param_value("L2"), 0.5);
         assert_eq!(robot.task, Some(vec![TaskRow::X, TaskRow::Y]));
-        assert_eq!(robot.scalar, crate::dh::Scalar::F32);
+        assert_eq!(robot.scalar, crate::model::robot::Scalar::F32);
         let lim = robot.joints[0].limits.unwrap();
         assert_eq!(lim, [-core::f64::consts::PI, core::f64::consts::PI]);
         assert!(robot.tool.is_some() && robot.base.is_none());

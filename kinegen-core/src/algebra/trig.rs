@@ -10,16 +10,16 @@ use std::collections::BTreeMap;
 
 use num_traits::{One, Signed};
 
-use crate::chain::{AngleDef, AngleSource, Chain};
-use crate::poly::{Mono, Poly, Ring, Var};
-use crate::value::{fmt_rat, Rat};
+use crate::algebra::angles::{AngleDef, AngleSource};
+use crate::algebra::poly::{Mono, Poly, Ring, Var};
+use crate::model::value::{fmt_rat, Rat};
 
 /// `sin` or `cos` of the sum of joint angles `first..=last` (1-based joint numbers).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct SumTrig {
     /// true for sin.
     pub sin: bool,
-    /// Angles (indices into `chain.angles`) summed, consecutive joints.
+    /// Angles (indices into the angle list) summed, consecutive joints.
     pub angles: Vec<usize>,
 }
 
@@ -43,10 +43,10 @@ struct Angles {
 }
 
 impl Angles {
-    fn new(chain: &Chain) -> Self {
+    fn new(angles: &[AngleDef]) -> Self {
         let mut of_var = BTreeMap::new();
         let mut joint_of = Vec::new();
-        for (k, a) in chain.angles.iter().enumerate() {
+        for (k, a) in angles.iter().enumerate() {
             of_var.insert(a.vars.0, (k, true));
             of_var.insert(a.vars.1, (k, false));
             joint_of.push(match &a.source {
@@ -76,9 +76,8 @@ pub fn sum_nf(ring: &Ring, angles: &[AngleDef], t: &SumTrig) -> Poly {
 }
 
 /// Rewrite `p` as a sum of trigonometric terms; `None` if the check fails.
-pub fn rewrite(chain: &Chain, p: &Poly) -> Option<Vec<TrigTerm>> {
-    let ring = &chain.graph.ring;
-    let ang = Angles::new(chain);
+pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTerm>> {
+    let ang = Angles::new(angles);
     let mut rest = p.clone();
     let mut out = Vec::new();
     let mut guard = 0;
@@ -106,7 +105,7 @@ pub fn rewrite(chain: &Chain, p: &Poly) -> Option<Vec<TrigTerm>> {
         for grouping in groupings(&singles, &ang) {
             let mut nf = Poly::constant(Rat::one());
             for t in &grouping {
-                nf = ring.mul(&nf, &sum_nf(ring, &chain.angles, t));
+                nf = ring.mul(&nf, &sum_nf(ring, angles, t));
             }
             // Coefficient so that the chosen monomial matches.
             let k = nf
@@ -148,7 +147,7 @@ pub fn rewrite(chain: &Chain, p: &Poly) -> Option<Vec<TrigTerm>> {
     for t in &out {
         let mut nf = Poly::from_terms([(t.rest.clone(), t.coef.clone())]);
         for f in &t.trig {
-            nf = ring.mul(&nf, &sum_nf(ring, &chain.angles, f));
+            nf = ring.mul(&nf, &sum_nf(ring, angles, f));
         }
         sum = sum.add(&nf);
     }
@@ -219,12 +218,19 @@ fn close(run: &[(usize, bool)]) -> SumTrig {
 }
 
 /// Text of an angle sum: `q2+q3`.
-pub fn angle_text(chain: &Chain, angles: &[usize]) -> String {
+pub fn angle_text(defs: &[AngleDef], angles: &[usize]) -> String {
     let parts: Vec<String> = angles
         .iter()
-        .map(|&a| match &chain.angles[a].source {
-            AngleSource::Joint { joint, offset } if offset.is_zero() => format!("q{}", joint + 1),
-            AngleSource::Joint { joint, offset } => format!("(q{} + {offset})", joint + 1),
+        .map(|&a| match &defs[a].source {
+            AngleSource::Joint {
+                joint,
+                sign,
+                offset,
+            } if *sign > 0 => match offset.is_zero() {
+                true => format!("q{}", joint + 1),
+                false => format!("(q{} + {offset})", joint + 1),
+            },
+            s @ AngleSource::Joint { .. } => format!("({})", s.text()),
             AngleSource::Constant(v) => format!("{v}"),
         })
         .collect();
@@ -232,8 +238,7 @@ pub fn angle_text(chain: &Chain, angles: &[usize]) -> String {
 }
 
 /// Plain-text formula of a rewritten polynomial (`a2*cos(q2) + a3*cos(q2+q3)`).
-pub fn text(chain: &Chain, terms: &[TrigTerm]) -> String {
-    let ring = &chain.graph.ring;
+pub fn text(ring: &Ring, angles: &[AngleDef], terms: &[TrigTerm]) -> String {
     let mut s = String::new();
     for (i, t) in terms.iter().enumerate() {
         let neg = t.coef.is_negative();
@@ -256,7 +261,7 @@ pub fn text(chain: &Chain, terms: &[TrigTerm]) -> String {
             parts.push(format!(
                 "{}({})",
                 if f.sin { "sin" } else { "cos" },
-                angle_text(chain, &f.angles)
+                angle_text(angles, &f.angles)
             ));
         }
         if parts.is_empty() {
@@ -271,8 +276,7 @@ pub fn text(chain: &Chain, terms: &[TrigTerm]) -> String {
 }
 
 /// LaTeX of a rewritten polynomial (`a_{2} \cos(q_{2}) + …`).
-pub fn latex(chain: &Chain, terms: &[TrigTerm]) -> String {
-    let ring = &chain.graph.ring;
+pub fn latex(ring: &Ring, angles: &[AngleDef], terms: &[TrigTerm]) -> String {
     let sub = |name: &str| -> String {
         let i = name
             .find(|c: char| c.is_ascii_digit())
@@ -303,7 +307,7 @@ pub fn latex(chain: &Chain, terms: &[TrigTerm]) -> String {
             parts.push(if e == 1 { n } else { format!("{n}^{{{e}}}") });
         }
         for f in &t.trig {
-            let arg: Vec<String> = angle_text(chain, &f.angles)
+            let arg: Vec<String> = angle_text(angles, &f.angles)
                 .split('+')
                 .map(|x| sub(x.trim()))
                 .collect();

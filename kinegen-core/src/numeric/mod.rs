@@ -7,14 +7,14 @@
 //! link ([`jacobian_propagation`]). Three methods that share no code past the DH matrix
 //! agreeing to rounding is what makes this a reference.
 //!
-//! Conventions (as in [`crate::dh`]): the joint variable `q_i` is added to `theta`
+//! Conventions (as in [`crate::model::dh`]): the joint variable `q_i` is added to `theta`
 //! (revolute) or `d` (prismatic); Jacobian rows are `[vx vy vz ωx ωy ωz]`, the linear part
 //! being the velocity of the tool point, all expressed in the world (base) frame unless the
 //! name says `_ee`.
 //!
 //! ```
 //! use kinegen_core::numeric::NumericRobot;
-//! # use kinegen_core::dh::{RawJoint, RawRobot, RawValue, validate};
+//! # use kinegen_core::model::{raw::{RawJoint, RawRobot, RawValue}, validate::validate};
 //! # let row = || RawJoint { kind: Some("revolute".into()), fields: vec![
 //! #     ("a".into(), RawValue::Number(1.0)), ("alpha".into(), RawValue::Number(0.0)),
 //! #     ("d".into(), RawValue::Number(0.0))] };
@@ -35,7 +35,8 @@ use std::fmt;
 
 use nalgebra::{DMatrix, Dyn, Matrix3, Matrix4, Matrix6, OMatrix, Vector3, U6};
 
-use crate::dh::{Convention, Frame, JointKind, Robot, TaskRow};
+use crate::model::dh::{Convention, Frame, Robot};
+use crate::model::robot::{JointKind, TaskRow};
 
 /// A 6×N Jacobian, rows `[vx vy vz ωx ωy ωz]`.
 pub type Jacobian = OMatrix<f64, U6, Dyn>;
@@ -153,7 +154,7 @@ pub fn rpy_transform(xyz: [f64; 3], rpy: [f64; 3]) -> Matrix4<f64> {
 
 /// A base or tool [`Frame`] as a matrix, parameters looked up in `param`.
 pub fn frame_transform(frame: &Frame, param: &dyn Fn(&str) -> f64) -> Matrix4<f64> {
-    let ev = |i: usize, v: &[crate::value::Value; 3]| v[i].eval(param);
+    let ev = |i: usize, v: &[crate::model::value::Value; 3]| v[i].eval(param);
     rpy_transform(
         [ev(0, &frame.xyz), ev(1, &frame.xyz), ev(2, &frame.xyz)],
         [ev(0, &frame.rpy), ev(1, &frame.rpy), ev(2, &frame.rpy)],

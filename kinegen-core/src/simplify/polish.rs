@@ -16,7 +16,7 @@
 //!   points (16, relative 1e-9).
 //!
 //! A failed check keeps the original (correct) expression and leaves a note. Extra
-//! rules can be passed in [`crate::generate::Options::extra_rewrites`] — for
+//! rules can be passed in [`crate::model::options::Options::extra_rewrites`] — for
 //! experiments, and for the test that shows a wrong rule cannot produce a wrong
 //! formula.
 
@@ -24,10 +24,10 @@ use std::collections::HashMap;
 
 use egg::{define_language, rewrite as rw, Id as EId, Pattern, RecExpr, Rewrite, Runner, Symbol};
 
-use crate::chain::Chain;
-use crate::code::children;
-use crate::generate::Budget;
-use crate::graph::{Graph, Id, Node};
+use crate::algebra::graph::{Graph, Id, Node};
+use crate::kinematics::frames::SymbolicChain;
+use crate::model::options::Budget;
+use crate::simplify::check::Probe;
 
 define_language! {
     /// Arithmetic over the graph's nodes: leaves `g17` stand for graph node 17.
@@ -107,7 +107,7 @@ const MAX_TREE: usize = 40;
 
 /// Polish the expressions reachable from `outputs`; returns their new ids.
 pub fn polish(
-    chain: &mut Chain,
+    sym: &mut SymbolicChain,
     outputs: &[Id],
     budget: &Budget,
     extra: &[(String, String)],
@@ -120,9 +120,50 @@ pub fn polish(
             .notes
             .push(format!("polish: extra rewrite ignored: {e}")),
     }
-    let probe = Probe::new(chain);
-    let g = &mut chain.graph;
-    // Roots: outputs and nodes used more than once (they become `let`s).
+    let probe = Probe::new(sym);
+    let g = &mut sym.graph;
+    let (order, uses) = reachable(g, outputs);
+    let is_root = |id: Id| outputs.contains(&id) || uses.get(&id).copied().unwrap_or(0) >= 2;
+    let mut map: HashMap<Id, Id> = HashMap::new();
+    let run = Run {
+        rules: &rules,
+        budget,
+        probe: &probe,
+    };
+    for &id in &order {
+        if matches!(g.node(id), Node::Num(_) | Node::Leaf(_)) || !is_root(id) {
+            continue;
+        }
+        // The inline tree under this root, leaves mapped to their polished ids.
+        let mut tree = Tree {
+            expr: RecExpr::default(),
+            size: 0,
+            remapped: false,
+        };
+        to_expr(g, id, true, &uses, outputs, &map, &mut tree);
+        // The unsimplified expression, on the (already checked) polished operands;
+        // untouched when none of them changed (rebuilding would re-canonicalise it).
+        let original = if tree.remapped {
+            from_expr(g, &tree.expr).unwrap_or(id)
+        } else {
+            id
+        };
+        if original != id {
+            map.insert(id, original);
+        }
+        if let Some(new) = run.improve(g, &tree, original, report) {
+            map.insert(id, new);
+        }
+    }
+    finish_report(g, report);
+    outputs
+        .iter()
+        .map(|o| map.get(o).copied().unwrap_or(*o))
+        .collect()
+}
+
+/// The nodes reachable from `outputs`, ascending, and how often each is used.
+fn reachable(g: &Graph, outputs: &[Id]) -> (Vec<Id>, HashMap<Id, usize>) {
     let mut uses: HashMap<Id, usize> = HashMap::new();
     let mut order: Vec<Id> = Vec::new();
     let mut stack: Vec<Id> = outputs.to_vec();
@@ -132,82 +173,72 @@ pub fn polish(
             continue;
         }
         order.push(id);
-        for c in children(g.node(id)) {
+        for c in g.node(id).children() {
             *uses.entry(c).or_default() += 1;
             stack.push(c);
         }
     }
     order.sort_unstable();
-    let is_root = |id: Id, uses: &HashMap<Id, usize>| {
-        outputs.contains(&id) || uses.get(&id).copied().unwrap_or(0) >= 2
-    };
-    let mut map: HashMap<Id, Id> = HashMap::new();
-    for &id in &order {
-        if matches!(g.node(id), Node::Num(_) | Node::Leaf(_)) || !is_root(id, &uses) {
-            continue;
-        }
-        // The inline tree under this root, leaves mapped to their polished ids.
-        let mut expr = RecExpr::default();
-        let mut size = 0;
-        let mut remapped = false;
-        to_expr(
-            g,
-            id,
-            true,
-            &uses,
-            outputs,
-            &map,
-            &mut expr,
-            &mut size,
-            &mut remapped,
-        );
-        // The unsimplified expression, on the (already checked) polished operands;
-        // untouched when none of them changed (rebuilding would re-canonicalise it).
-        let original = if remapped {
-            from_expr(g, &expr).unwrap_or(id)
-        } else {
-            id
-        };
-        if original != id {
-            map.insert(id, original);
-        }
-        if size < 2 {
-            continue;
+    (order, uses)
+}
+
+/// One inline expression as an egg term: its operations and whether a leaf was
+/// replaced by an already polished node.
+struct Tree {
+    expr: RecExpr<Arith>,
+    size: usize,
+    remapped: bool,
+}
+
+/// What every e-graph run shares.
+struct Run<'a> {
+    rules: &'a [Rewrite<Arith, ()>],
+    budget: &'a Budget,
+    probe: &'a Probe,
+}
+
+impl Run<'_> {
+    /// The cheapest form of `tree` that passes the check, if it is cheaper than
+    /// `original` (the same expression in the graph).
+    fn improve(&self, g: &mut Graph, tree: &Tree, original: Id, report: &mut Report) -> Option<Id> {
+        if tree.size < 2 {
+            return None;
         }
         // Past the engine's deadline the remaining expressions stay as they are (their
-        // operands are still remapped above, which is cheap).
+        // operands are still remapped, which is cheap).
         if g.past_deadline() {
             report.timed_out += 1;
-            continue;
+            return None;
         }
         // The time left of the engine's budget, not a full budget per run.
         let time = g
             .deadline
             .remaining()
-            .min(std::time::Duration::from_millis(budget.time_ms.max(1)));
+            .min(std::time::Duration::from_millis(self.budget.time_ms.max(1)));
         let runner = Runner::default()
-            .with_node_limit(budget.nodes.max(1))
-            .with_iter_limit(budget.iterations.max(1))
+            .with_node_limit(self.budget.nodes.max(1))
+            .with_iter_limit(self.budget.iterations.max(1))
             .with_time_limit(time)
-            .with_expr(&expr)
-            .run(&rules);
+            .with_expr(&tree.expr)
+            .run(self.rules);
         let extractor = egg::Extractor::new(&runner.egraph, OpCost);
         let (cost, best) = extractor.find_best(runner.roots[0]);
-        let candidate = if cost < size {
-            from_expr(g, &best)
+        if cost >= tree.size {
+            return None;
+        }
+        let new = from_expr(g, &best).filter(|&new| new != original)?;
+        if self.probe.same(g, new, original) {
+            report.improved += 1;
+            report.saved += tree.size - cost;
+            Some(new)
         } else {
+            report.rejected += 1;
             None
-        };
-        if let Some(new) = candidate.filter(|&new| new != original) {
-            if probe.same(g, new, original) {
-                report.improved += 1;
-                report.saved += size - cost;
-                map.insert(id, new);
-            } else {
-                report.rejected += 1;
-            }
         }
     }
+}
+
+fn finish_report(g: &Graph, report: &mut Report) {
     if report.timed_out > 0 {
         report.notes.push(format!(
             "{} ran out during the e-graph polish: {} expressions were left unpolished \
@@ -223,13 +254,8 @@ pub fn polish(
             report.rejected
         ));
     }
-    outputs
-        .iter()
-        .map(|o| map.get(o).copied().unwrap_or(*o))
-        .collect()
 }
 
-#[allow(clippy::too_many_arguments)]
 fn to_expr(
     g: &Graph,
     id: Id,
@@ -237,49 +263,35 @@ fn to_expr(
     uses: &HashMap<Id, usize>,
     outputs: &[Id],
     map: &HashMap<Id, Id>,
-    expr: &mut RecExpr<Arith>,
-    size: &mut usize,
-    remapped: &mut bool,
+    tree: &mut Tree,
 ) -> EId {
     let node = g.node(id);
     let leaf = !top
         && (matches!(node, Node::Num(_) | Node::Leaf(_))
             || outputs.contains(&id)
             || uses.get(&id).copied().unwrap_or(0) >= 2
-            || *size >= MAX_TREE);
+            || tree.size >= MAX_TREE);
     if leaf {
         let id = match map.get(&id) {
             Some(&new) => {
-                *remapped = true;
+                tree.remapped = true;
                 new
             }
             None => id,
         };
-        return expr.add(Arith::Leaf(Symbol::from(format!("g{id}"))));
+        return tree.expr.add(Arith::Leaf(Symbol::from(format!("g{id}"))));
     }
-    *size += 1;
-    let mut sub = |x: Id, expr: &mut RecExpr<Arith>, size: &mut usize| {
-        to_expr(g, x, false, uses, outputs, map, expr, size, remapped)
-    };
-    match *node {
-        Node::Add(a, b) => {
-            let (x, y) = (sub(a, expr, size), sub(b, expr, size));
-            expr.add(Arith::Add([x, y]))
-        }
-        Node::Sub(a, b) => {
-            let (x, y) = (sub(a, expr, size), sub(b, expr, size));
-            expr.add(Arith::Sub([x, y]))
-        }
-        Node::Mul(a, b) => {
-            let (x, y) = (sub(a, expr, size), sub(b, expr, size));
-            expr.add(Arith::Mul([x, y]))
-        }
-        Node::Neg(a) => {
-            let x = sub(a, expr, size);
-            expr.add(Arith::Neg(x))
-        }
+    tree.size += 1;
+    let sub = |x: Id, tree: &mut Tree| to_expr(g, x, false, uses, outputs, map, tree);
+    // Operands left to right: the term's node order is part of the output.
+    let op = match *node {
+        Node::Add(a, b) => Arith::Add([sub(a, tree), sub(b, tree)]),
+        Node::Sub(a, b) => Arith::Sub([sub(a, tree), sub(b, tree)]),
+        Node::Mul(a, b) => Arith::Mul([sub(a, tree), sub(b, tree)]),
+        Node::Neg(a) => Arith::Neg(sub(a, tree)),
         Node::Num(_) | Node::Leaf(_) => unreachable!("handled above"),
-    }
+    };
+    tree.expr.add(op)
 }
 
 /// Build an extracted expression in the graph (its normal form computed afresh from
@@ -300,73 +312,20 @@ fn from_expr(g: &mut Graph, expr: &RecExpr<Arith>) -> Option<Id> {
     ids.last().copied()
 }
 
-/// The check: exact normal forms when both are known, else values at random points.
-pub(crate) struct Probe {
-    points: Vec<Vec<f64>>,
-}
-
-impl Probe {
-    pub(crate) fn new(chain: &Chain) -> Self {
-        use crate::poly::VarKind;
-        // A fixed-seed generator: the check must not make the output nondeterministic.
-        let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let ring = &chain.graph.ring;
-        let points = (0..16)
-            .map(|_| {
-                let mut vals: Vec<f64> = (0..ring.len())
-                    .map(|v| match ring.kind(v as u32) {
-                        VarKind::Sqrt(k) => (*k as f64).sqrt(),
-                        _ => 0.5 + next(),
-                    })
-                    .collect();
-                for a in &chain.angles {
-                    let x = (next() - 0.5) * 2.0 * std::f64::consts::PI;
-                    vals[a.vars.0 as usize] = x.sin();
-                    vals[a.vars.1 as usize] = x.cos();
-                }
-                vals
-            })
-            .collect();
-        Probe { points }
-    }
-
-    fn same(&self, g: &Graph, a: Id, b: Id) -> bool {
-        if let (Some(x), Some(y)) = (g.nf(a), g.nf(b)) {
-            return x == y;
-        }
-        self.same_values(g, a, b)
-    }
-
-    /// Values agree at every point (for rewrites whose normal forms are not recomputed).
-    pub(crate) fn same_values(&self, g: &Graph, a: Id, b: Id) -> bool {
-        self.points.iter().all(|p| {
-            let x = g.eval(a, &|v| p[v as usize]);
-            let y = g.eval(b, &|v| p[v as usize]);
-            (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()))
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// A chain with leaves to build expressions from (planar RR: s1, c1, s2, c2, L1, L2).
-    fn chain() -> Chain {
+    fn chain() -> SymbolicChain {
         let src = "name = \"RR\"\nconvention = \"standard\"\n[params]\nL1 = 1.0\nL2 = 0.5\n\
                    [[joints]]\ntype = \"revolute\"\na = \"L1\"\nalpha = 0\nd = 0\n\
                    [[joints]]\ntype = \"revolute\"\na = \"L2\"\nalpha = 0\nd = 0\n";
-        let (robot, _) = crate::toml_input::load_str(src, "rr.toml").unwrap();
-        Chain::new(&robot, 1000)
+        let (robot, _) = crate::front::toml_file::load_str(src, "rr.toml").unwrap();
+        SymbolicChain::new(&robot.chain(), 1000)
     }
 
-    fn leaves(c: &mut Chain) -> (Id, Id, Id) {
+    fn leaves(c: &mut SymbolicChain) -> (Id, Id, Id) {
         let ring = &c.graph.ring;
         let v: Vec<u32> = (0..ring.len() as u32).collect();
         let l1 = v.iter().copied().find(|&x| ring.name(x) == "L1").unwrap();
@@ -411,7 +370,7 @@ mod tests {
         let ab = c.graph.mul(a, b);
         let ad = c.graph.mul(a, d);
         let e = c.graph.add(ab, ad);
-        c.graph.deadline = crate::generate::Deadline::after_ms(0);
+        c.graph.deadline = crate::model::options::Deadline::after_ms(0);
         let mut report = Report::default();
         let out = polish(&mut c, &[e], &Budget::default(), &[], &mut report);
         assert_eq!((report.improved, report.timed_out), (0, 1), "{report:?}");

@@ -23,9 +23,8 @@
 
 use std::collections::HashMap;
 
-use crate::code::children;
-use crate::graph::{Graph, Id, Node};
-use crate::poly::Poly;
+use crate::algebra::graph::{Graph, Id, Node};
+use crate::algebra::poly::Poly;
 
 /// The same outputs with signs chosen to minimise negations. Returns the new ids of
 /// `outputs`, in order.
@@ -107,7 +106,7 @@ impl Problem {
         let mut stack = outputs.to_vec();
         while let Some(id) = stack.pop() {
             if seen.insert(id) {
-                stack.extend(children(g.node(id)));
+                stack.extend(g.node(id).children());
             }
         }
         let ids: Vec<Id> = seen.into_iter().collect();
@@ -471,7 +470,7 @@ mod tests {
         let mut stack = outputs.to_vec();
         while let Some(id) = stack.pop() {
             if seen.insert(id) {
-                stack.extend(children(g.node(id)));
+                stack.extend(g.node(id).children());
             }
         }
         seen.iter()

@@ -11,9 +11,9 @@ use std::collections::HashMap;
 
 use num_traits::{One, Signed, Zero};
 
-use crate::generate::Deadline;
-use crate::poly::{Poly, Ring, Var};
-use crate::value::Rat;
+use crate::algebra::poly::{Poly, Ring, Var};
+use crate::model::options::Deadline;
+use crate::model::value::Rat;
 
 /// A node index.
 pub type Id = u32;
@@ -33,6 +33,17 @@ pub enum Node {
     Mul(Id, Id),
     /// `−a`.
     Neg(Id),
+}
+
+impl Node {
+    /// The operands of the node.
+    pub fn children(&self) -> Vec<Id> {
+        match self {
+            Node::Num(_) | Node::Leaf(_) => vec![],
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => vec![*a, *b],
+            Node::Neg(a) => vec![*a],
+        }
+    }
 }
 
 /// The DAG, its ring and its normal forms.
@@ -455,7 +466,7 @@ impl Graph {
             return v;
         }
         let v = match &self.nodes[id as usize] {
-            Node::Num(r) => crate::value::rat_to_f64(r),
+            Node::Num(r) => crate::model::value::rat_to_f64(r),
             Node::Leaf(v) => x(*v),
             Node::Add(a, b) => self.eval_memo(*a, x, memo) + self.eval_memo(*b, x, memo),
             Node::Sub(a, b) => self.eval_memo(*a, x, memo) - self.eval_memo(*b, x, memo),

@@ -1,14 +1,14 @@
 //! Formulas for people: the engine's Rust-syntax formula strings rendered as LaTeX or
 //! as compact plain text.
 //!
-//! Formulas come from [`crate::code::Body`] (`c1 * L1 + L2 * c12`). Each is parsed
+//! Formulas come from [`crate::emit::code::Body`] (`c1 * L1 + L2 * c12`). Each is parsed
 //! with `syn` and the tree is printed again with the least parentheses its
 //! precedence needs (the engine's parentheses are Rust's, not the reader's).
 //! Variable names follow the textbooks' subscripts: `c23` → `c_{23}` (= cos(q2 + q3)),
 //! `L1` → `L_{1}`, `s_k1` → `s_{k1}`.
 //!
 //! ```
-//! use kinegen_core::latex::{to_latex, to_text};
+//! use kinegen_core::emit::latex::{to_latex, to_text};
 //! assert_eq!(to_latex("c1 * L1 + L2 * c12").unwrap(), r"c_{1}\,L_{1} + L_{2}\,c_{12}");
 //! assert_eq!(to_text("-(s1 * L1 + t2)").unwrap(), "-(s1·L1 + t2)");
 //! ```
@@ -291,7 +291,7 @@ pub struct Block {
 /// An `align*` environment, one equation per line, aligned at `=`.
 ///
 /// ```
-/// use kinegen_core::latex::{align, Equation};
+/// use kinegen_core::emit::latex::{align, Equation};
 /// let eq = Equation { lhs: "c_{12}".into(), rhs: r"\cos(q_{1} + q_{2})".into() };
 /// assert_eq!(
 ///     align(&[eq]),
@@ -479,9 +479,10 @@ mod tests {
                    [[joints]]\ntype = \"revolute\"\na = \"L1\"\nalpha = \"pi/2\"\nd = 0.1\n\
                    [[joints]]\ntype = \"revolute\"\na = 0.3\nalpha = 0.3\nd = 0\ntheta = 0.2\n\
                    [[joints]]\ntype = \"prismatic\"\na = 0\nalpha = 0\ntheta = 0\n";
-        let (robot, options) = crate::toml_input::load_str(src, "rrp.toml").unwrap();
-        let model = crate::model::Model::build(&robot, &options);
-        let coder = crate::code::Coder::new(&robot, &model.chain);
+        let (robot, options) = crate::front::toml_file::load_str(src, "rrp.toml").unwrap();
+        let chain = robot.chain();
+        let model = crate::simplify::order::build(&chain, &options);
+        let coder = crate::emit::code::Coder::new(&chain, &model.sym);
         let ids: Vec<_> = model.jacobian.iter().flatten().copied().collect();
         let body = coder.body(&ids);
         assert!(!body.defs.is_empty());

@@ -12,7 +12,7 @@ use std::fmt;
 
 use num_traits::{One, Signed, Zero};
 
-use crate::value::{fmt_rat, rat_to_f64, Rat};
+use crate::model::value::{fmt_rat, rat_to_f64, Rat};
 
 /// A variable of the ring: an index into [`Ring`]'s table.
 pub type Var = u32;

@@ -1,11 +1,11 @@
 //! The shape of a robot description, shared by both front ends.
 //!
-//! [`crate::dh`] checks the DH table itself; this module holds what surrounds it: the
+//! [`crate::model::validate`] checks the DH table itself; this module holds what surrounds it: the
 //! top-level keys and the `budget` entries. The `kinematics!` macro and the TOML loader
 //! both take their messages from here, so the same mistake reads the same in both.
 
-use crate::dh::{DhError, PathSeg};
-use crate::generate::Budget;
+use crate::model::options::Budget;
+use crate::model::raw::{DhError, PathSeg};
 
 /// Keys allowed at the top level of a robot description.
 pub const TOP_LEVEL_KEYS: &[&str] = &[
@@ -38,7 +38,7 @@ pub fn given_twice(key: &str) -> String {
 /// Set one `budget` entry. `value` is the entry as an integer, `None` if it is not one.
 ///
 /// ```
-/// use kinegen_core::{input::set_budget, Budget};
+/// use kinegen_core::{model::input::set_budget, Budget};
 /// let mut b = Budget::default();
 /// set_budget(&mut b, "nodes", Some(2000)).unwrap();
 /// assert_eq!(b.nodes, 2000);
@@ -70,7 +70,7 @@ pub fn set_budget(budget: &mut Budget, key: &str, value: Option<i128>) -> Result
 }
 
 /// All errors of one input: `shape` errors found while reading it (wrong kinds of
-/// entries, unknown keys) then `checks` from [`crate::dh::validate`], minus the checks
+/// entries, unknown keys) then `checks` from [`crate::model::validate::validate`], minus the checks
 /// under a top-level key that already has a shape error (a `joints` entry that is not a
 /// list would otherwise also report "the DH table has no joints").
 pub fn combine_errors(shape: Vec<DhError>, checks: Vec<DhError>) -> Vec<DhError> {

@@ -2,41 +2,31 @@
 //! revolute joints and `[z; 0]` for prismatic ones, with `z`, `o` the joint's axis
 //! and a point on it and `p` the tool point, all in world coordinates.
 
-use crate::chain::{rotate, Chain, Pivot, Transform};
-use crate::dh::{JointKind, Robot};
-use crate::graph::{Graph, Id};
+use crate::algebra::graph::{Graph, Id};
+use crate::chain::Chain;
+use crate::kinematics::frames::{Pivot, SymbolicChain};
+use crate::kinematics::transform::{cross, rotate, Transform};
+use crate::model::robot::JointKind;
 
 /// A 6×N matrix of nodes, row-major (`rows[r][joint]`), rows `[vx vy vz ωx ωy ωz]`.
 pub type Rows = Vec<Vec<Id>>;
-
-/// `a × b`.
-pub fn cross(g: &mut Graph, a: [Id; 3], b: [Id; 3]) -> [Id; 3] {
-    let mut out = [0; 3];
-    for (i, o) in out.iter_mut().enumerate() {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        let x = g.mul(a[j], b[k]);
-        let y = g.mul(a[k], b[j]);
-        *o = g.sub(x, y);
-    }
-    out
-}
 
 /// The geometric Jacobian of the tool point in the world frame.
 ///
 /// With a [`Pivot`] the columns of joints after frame `k` are formed in frame `k`
 /// (fewer joints in every product) and rotated into the world frame at the end.
-pub fn geometric(robot: &Robot, chain: &mut Chain, pivot: Option<&Pivot>) -> Rows {
-    let n = robot.dof();
-    let zero = chain.graph.int(0);
+pub fn geometric(chain: &Chain, sym: &mut SymbolicChain, pivot: Option<&Pivot>) -> Rows {
+    let n = chain.dof();
+    let zero = sym.graph.int(0);
     let mut rows = vec![vec![zero; n]; 6];
-    for (i, joint) in robot.joints.iter().enumerate() {
+    for (i, kind) in chain.kinds().enumerate() {
         let local = pivot.filter(|pv| i >= pv.k);
         let (z, o, p) = match local {
             Some(pv) => (pv.axes[i - pv.k].0, pv.axes[i - pv.k].1, pv.tool.p),
-            None => (chain.axes[i].0, chain.axes[i].1, chain.tool.p),
+            None => (sym.axes[i].0, sym.axes[i].1, sym.tool.p),
         };
-        let g = &mut chain.graph;
-        let (mut lin, mut ang) = match joint.kind {
+        let g = &mut sym.graph;
+        let (mut lin, mut ang) = match kind {
             JointKind::Revolute => {
                 let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
                 (cross(g, z, r), z)

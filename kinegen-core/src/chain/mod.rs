@@ -1,0 +1,237 @@
+//! The kinematic chain: the engine's only input.
+//!
+//! A [`Chain`] is a robot as a product of elementary transforms — rotations about and
+//! translations along the axes of the current frame, with exact constant or symbolic
+//! arguments — and, once per [`Link`], the motion of a joint about or along one of those
+//! axes. Nothing here knows where the robot came from: a DH table (both conventions,
+//! [`dh`]) is one builder of it, a URDF joint list another. Everything after this stage
+//! (frames, Jacobians, determinants, code) reads only a `Chain`.
+//!
+//! ```
+//! use kinegen_core::front::toml_file::load_str;
+//! let src = "convention = \"standard\"\n[[joints]]\ntype = \"revolute\"\na = 1\nalpha = 0\nd = 0\n";
+//! let (robot, _) = load_str(src, "r.toml").unwrap();
+//! let chain = robot.chain();
+//! assert_eq!(chain.dof(), 1);
+//! assert_eq!(chain.to_string(), "link 1: Rz(q1) Tz(0) Tx(1) Rx(0)\n");
+//! ```
+
+pub mod dh;
+
+use std::fmt;
+
+use crate::model::robot::{JointKind, Param, Scalar, TaskRow};
+use crate::model::value::Value;
+
+/// A coordinate axis of the current frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// x.
+    X,
+    /// y.
+    Y,
+    /// z.
+    Z,
+}
+
+impl Axis {
+    /// 0, 1, 2 for x, y, z.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    fn name(self) -> &'static str {
+        ["x", "y", "z"][self as usize]
+    }
+}
+
+/// A constant elementary transform, right-multiplied onto the current frame.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Elem {
+    /// Rotation about an axis by a constant angle (radians, may name parameters).
+    Rot(Axis, Value),
+    /// Translation along an axis by a constant length (may name parameters).
+    Trans(Axis, Value),
+}
+
+impl Elem {
+    /// The axis it turns about or moves along.
+    pub fn axis(&self) -> Axis {
+        match self {
+            Elem::Rot(a, _) | Elem::Trans(a, _) => *a,
+        }
+    }
+}
+
+/// The motion of a joint: about (revolute) or along (prismatic) an axis of the current
+/// frame, by `sign · q + offset` where `q` is the joint variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    /// Revolute or prismatic.
+    pub kind: JointKind,
+    /// The axis of the current frame it turns about or slides along.
+    pub axis: Axis,
+    /// `+1`, or `-1` for a joint that runs against its axis.
+    pub sign: i8,
+    /// Constant added to `sign · q` (a DH table's θ or d, its `offset`).
+    pub offset: Value,
+}
+
+/// Where a link's joint axis (and a point on it) is read for the Jacobian.
+///
+/// Every frame whose origin lies on the joint's axis gives the same Jacobian column;
+/// the choice only decides which expressions the generated code computes. The DH
+/// builders keep the textbook's: `z_{i-1}`, `o_{i-1}` for standard DH, `z_i`, `o_i` for
+/// modified DH.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisAt {
+    /// In the frame just before the motion.
+    Motion,
+    /// In the link's frame (its end). Valid when every element after the motion turns
+    /// about or moves along the joint's own axis ([`Chain::check`]).
+    LinkFrame,
+}
+
+/// One moving link: the constant transforms before its joint, the joint's motion, the
+/// constant transforms after it. Its frame (the link frame `base · A1 ⋯ Ai`) is the end.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// The joint's name (`q3` for a DH row, the joint's name in a URDF).
+    pub name: String,
+    /// Constant transforms before the motion.
+    pub before: Vec<Elem>,
+    /// The joint.
+    pub motion: Motion,
+    /// Constant transforms after the motion.
+    pub after: Vec<Elem>,
+    /// Where the joint axis is read for the Jacobian.
+    pub axis_at: AxisAt,
+    /// Joint limits `[min, max]` on `q` (radians or metres), if known.
+    pub limits: Option<[f64; 2]>,
+}
+
+/// A robot as the engine sees it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chain {
+    /// Display name (`"UR5"`).
+    pub name: String,
+    /// Named parameters, in declaration order: fields of the generated type.
+    pub params: Vec<Param>,
+    /// World → frame 0.
+    pub base: Vec<Elem>,
+    /// The moving links, base to tip; link `i` carries joint variable `q[i]`.
+    pub links: Vec<Link>,
+    /// Frame N → tool point.
+    pub tool: Vec<Elem>,
+    /// Rows of the reduced (task) Jacobian.
+    pub task: Option<Vec<TaskRow>>,
+    /// Scalar type of the generated code.
+    pub scalar: Scalar,
+    /// What the robot was described as (`standard DH`, `modified (Craig) DH`).
+    pub description: String,
+    /// The description itself, for the generated type's rustdoc (markdown lines: the
+    /// DH table).
+    pub summary: Vec<String>,
+}
+
+/// A chain that breaks an invariant the engine relies on (a builder's bug, never the
+/// user's input).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ChainError(pub String);
+
+impl fmt::Display for ChainError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ChainError {}
+
+impl Chain {
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.links.len()
+    }
+
+    /// Joint kinds, base to tip.
+    pub fn kinds(&self) -> impl Iterator<Item = JointKind> + '_ {
+        self.links.iter().map(|l| l.motion.kind)
+    }
+
+    /// Default value of a parameter (NaN for an unknown name; validation rules that out).
+    pub fn param_value(&self, name: &str) -> f64 {
+        self.params
+            .iter()
+            .find(|p| p.name == name)
+            .map_or(f64::NAN, |p| p.value.eval(&|_| f64::NAN))
+    }
+
+    /// Numeric value of an entry with the default parameter values.
+    pub fn eval(&self, v: &Value) -> f64 {
+        v.eval(&|n| self.param_value(n))
+    }
+
+    /// Check the invariants: joint signs are ±1, and a link that reads its axis in the
+    /// link frame has only elements along that axis after its motion.
+    pub fn check(&self) -> Result<(), ChainError> {
+        for (i, l) in self.links.iter().enumerate() {
+            if l.motion.sign != 1 && l.motion.sign != -1 {
+                return Err(ChainError(format!(
+                    "link {}: joint sign {} is not ±1",
+                    i + 1,
+                    l.motion.sign
+                )));
+            }
+            let off_axis = l.after.iter().any(|e| e.axis() != l.motion.axis);
+            if l.axis_at == AxisAt::LinkFrame && off_axis {
+                return Err(ChainError(format!(
+                    "link {}: the axis is read in the link frame, but a transform after the \
+                     joint leaves the joint's axis",
+                    i + 1
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Elem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Elem::Rot(a, v) => write!(f, "R{}({v})", a.name()),
+            Elem::Trans(a, v) => write!(f, "T{}({v})", a.name()),
+        }
+    }
+}
+
+impl fmt::Display for Chain {
+    /// One line per part: `base: …`, `link i: … Rz(q_i) …`, `tool: …`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let elems = |v: &[Elem]| v.iter().map(|e| e.to_string()).collect::<Vec<_>>();
+        if !self.base.is_empty() {
+            writeln!(f, "base: {}", elems(&self.base).join(" "))?;
+        }
+        for (i, l) in self.links.iter().enumerate() {
+            let m = &l.motion;
+            let q = format!("q{}", i + 1);
+            let var = if m.sign < 0 { format!("-{q}") } else { q };
+            let arg = if m.offset.is_zero() {
+                var
+            } else {
+                format!("{var} + {}", m.offset)
+            };
+            let kind = match m.kind {
+                JointKind::Revolute => "R",
+                JointKind::Prismatic => "T",
+            };
+            let mut parts = elems(&l.before);
+            parts.push(format!("{kind}{}({arg})", m.axis.name()));
+            parts.extend(elems(&l.after));
+            writeln!(f, "link {}: {}", i + 1, parts.join(" "))?;
+        }
+        if !self.tool.is_empty() {
+            writeln!(f, "tool: {}", elems(&self.tool).join(" "))?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,16 @@
+//! Emission: the symbolic outputs printed, nothing built.
+//!
+//! - [`code`]: straight-line code as Rust statements (shared `let`s, batched
+//!   `sin_cos_n`, angle-sum names) and operation counts.
+//! - [`functions`]: what the generated type holds — each method's body and doc, the
+//!   constants — as values.
+//! - [`docs`], [`formulas`], [`latex`]: the closed forms for people (rustdoc,
+//!   `FORMULAS`, LaTeX).
+//! - [`rust`]: the item printed and parsed into tokens.
+
+pub mod code;
+pub mod docs;
+pub mod formulas;
+pub mod functions;
+pub mod latex;
+pub mod rust;

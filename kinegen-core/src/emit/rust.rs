@@ -1,0 +1,183 @@
+//! Rust emission: the robot type, its inherent `impl` and the `Kinematics` trait
+//! implementations, printed from [`Functions`].
+
+use std::fmt::Write;
+
+use proc_macro2::{Ident, TokenStream};
+
+use crate::chain::Chain;
+use crate::emit::docs::struct_doc;
+use crate::emit::functions::{Const, DetOf, Functions, Item, Method, MethodBody};
+use crate::model::robot::Scalar;
+
+/// What the generated item looks like from outside: `#[attrs] vis struct ident`.
+#[derive(Clone, Debug)]
+pub struct ItemHeader {
+    /// Outer attributes written on the struct (doc comments, `#[derive]`s beyond ours).
+    pub attrs: TokenStream,
+    /// Visibility (`pub`, `pub(crate)` or empty).
+    pub vis: TokenStream,
+    /// The type's name.
+    pub ident: Ident,
+}
+
+impl ItemHeader {
+    /// `pub struct <Name>` with the name made a Rust type name from a display name
+    /// (`"UR5"` → `Ur5`, `"planar RR"` → `PlanarRr`).
+    pub fn public(display_name: &str) -> Self {
+        ItemHeader {
+            attrs: TokenStream::new(),
+            vis: quote::quote!(pub),
+            ident: Ident::new(&type_name(display_name), proc_macro2::Span::call_site()),
+        }
+    }
+}
+
+/// A Rust type name (UpperCamelCase) from a display name.
+pub fn type_name(display: &str) -> String {
+    let mut out = String::new();
+    for word in display.split(|c: char| !c.is_ascii_alphanumeric()) {
+        let mut chars = word.chars();
+        if let Some(first) = chars.next() {
+            out.push(first.to_ascii_uppercase());
+            out.extend(chars.map(|c| c.to_ascii_lowercase()));
+        }
+    }
+    if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) {
+        out.insert_str(0, "Robot");
+    }
+    out
+}
+
+/// The item for `chain`: struct (with `Default`), inherent `impl`, trait `impl`s.
+pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenStream {
+    let ident = header.ident.to_string();
+    let mut items = the_struct(chain, header, functions);
+    let qty = format!("&[{}; {}]", functions.float, chain.dof());
+    let mut body = String::new();
+    for item in &functions.items {
+        match item {
+            Item::Method(m) => method(&mut body, m, &qty),
+            Item::Const(c) => konst(&mut body, c),
+        }
+    }
+    let _ = writeln!(
+        items,
+        "#[allow(clippy::all, clippy::pedantic, unused_parens, non_snake_case)]\nimpl {ident} {{\n{body}}}"
+    );
+    if chain.scalar == Scalar::F64 {
+        items.push_str(&traits(chain, &ident, functions));
+    }
+    match syn::parse_str::<syn::File>(&items) {
+        Ok(file) => quote::quote!(#file),
+        Err(e) => {
+            // An engine bug, never the user's input: report it instead of emitting
+            // code that does not parse.
+            let msg = format!("kinegen internal error: generated code does not parse: {e}");
+            quote::quote!(::core::compile_error!(#msg);)
+        }
+    }
+}
+
+/// The struct, its parameters as fields, and `Default` with the table's values.
+fn the_struct(chain: &Chain, header: &ItemHeader, functions: &Functions) -> String {
+    let f = functions.float;
+    let ident = header.ident.to_string();
+    let vis = header.vis.to_string();
+    let attrs = header.attrs.to_string();
+    let summary = struct_doc(chain);
+    if functions.fields.is_empty() {
+        return format!(
+            "{attrs}\n{summary}\n#[derive(Clone, Copy, Debug, Default, PartialEq)]\n{vis} struct {ident};\n"
+        );
+    }
+    let mut fields = String::new();
+    let mut defaults = String::new();
+    for (name, doc, value) in &functions.fields {
+        let _ = writeln!(fields, "/// {doc}\npub {name}: {f},");
+        let _ = writeln!(defaults, "{name}: {value},");
+    }
+    format!(
+        "{attrs}\n{summary}\n#[derive(Clone, Copy, Debug, PartialEq)]\n{vis} struct {ident} {{\n{fields}}}\n\
+         impl ::core::default::Default for {ident} {{\n/// The DH table's values.\nfn default() -> Self {{ Self {{ {defaults} }} }}\n}}\n"
+    )
+}
+
+/// `impl Kinematics<N>` and, with task rows, `impl TaskKinematics<N, M>` (f64 only).
+fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
+    let n = chain.dof();
+    let mut tr = format!(
+        "impl ::kinegen::Kinematics<{n}> for {ident} {{\n\
+         const NAME: &'static str = {:?};\n\
+         #[inline] fn fk(&self, q: &[f64; {n}]) -> [[f64; 4]; 4] {{ {ident}::fk(self, q) }}\n\
+         #[inline] fn frames(&self, q: &[f64; {n}]) -> [[[f64; 4]; 4]; {n}] {{ {ident}::frames(self, q) }}\n\
+         #[inline] fn jacobian(&self, q: &[f64; {n}]) -> [[f64; {n}]; 6] {{ {ident}::jacobian(self, q) }}\n\
+         #[inline] fn jacobian_ee(&self, q: &[f64; {n}]) -> [[f64; {n}]; 6] {{ {ident}::jacobian_ee(self, q) }}\n\
+         #[inline] fn fk_and_jacobian(&self, q: &[f64; {n}]) -> ([[f64; 4]; 4], [[f64; {n}]; 6]) {{ {ident}::fk_and_jacobian(self, q) }}\n\
+         #[inline] fn limits(&self) -> [[f64; 2]; {n}] {{ Self::LIMITS }}\n",
+        chain.name
+    );
+    if functions.det == Some(DetOf::Full) {
+        let _ = writeln!(
+            tr,
+            "#[inline] fn jacobian_det(&self, q: &[f64; {n}]) -> Option<f64> {{ Some({ident}::jacobian_det(self, q)) }}"
+        );
+    }
+    tr.push_str("}\n");
+    if let Some(task) = &chain.task {
+        let m = task.len();
+        let rows: Vec<String> = task.iter().map(|r| r.index().to_string()).collect();
+        let det = if functions.det.is_some() && m == n {
+            format!("#[inline] fn task_jacobian_det(&self, q: &[f64; {n}]) -> Option<f64> {{ Some({ident}::jacobian_det(self, q)) }}\n")
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            tr,
+            "impl ::kinegen::TaskKinematics<{n}, {m}> for {ident} {{\n\
+             const TASK_ROWS: [usize; {m}] = [{}];\n\
+             #[inline] fn task_jacobian(&self, q: &[f64; {n}]) -> [[f64; {n}]; {m}] {{ {ident}::task_jacobian(self, q) }}\n{det}}}",
+            rows.join(", "),
+        );
+    }
+    tr
+}
+
+fn doc_lines(out: &mut String, doc: &str) {
+    for line in doc.lines() {
+        let _ = writeln!(out, "///{}{line}", if line.is_empty() { "" } else { " " });
+    }
+}
+
+fn method(out: &mut String, m: &Method, qty: &str) {
+    let Method {
+        doc,
+        name,
+        ret,
+        body,
+    } = m;
+    match body {
+        MethodBody::Code { body, result } => {
+            doc_lines(out, doc);
+            let _ = writeln!(
+                out,
+                "#[inline]\n#[must_use]\npub fn {name}(&self, q: {qty}) -> {ret} {{\nlet _ = q;\n{}\n{result}\n}}",
+                body.lets.join("\n"),
+            );
+        }
+        MethodBody::Expr(e) => {
+            let _ = writeln!(
+                out,
+                "/// {doc}\n#[inline]\n#[must_use]\npub fn {name}(&self, q: {qty}) -> {ret} {{ {e} }}"
+            );
+        }
+    }
+}
+
+fn konst(out: &mut String, c: &Const) {
+    let _ = writeln!(
+        out,
+        "/// {}\npub const {}: {} = {};",
+        c.doc, c.name, c.ty, c.value
+    );
+}

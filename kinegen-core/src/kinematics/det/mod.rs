@@ -1,0 +1,8 @@
+//! The Jacobian determinant in closed form.
+//!
+//! - [`structural`]: the determinant in a well-chosen frame about a well-chosen point,
+//!   taken by structure (single entries split off, memoised Laplace) and factored.
+//! - [`closed_form`]: its factors read back as trigonometry, as code, checked.
+
+pub mod closed_form;
+pub mod structural;

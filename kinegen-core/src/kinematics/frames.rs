@@ -1,0 +1,262 @@
+//! A [`Chain`]'s frames as straight-line code: every link frame, the tool, and each
+//! joint's axis with a point on it, all as nodes of one graph.
+//!
+//! The chain is unrolled link by link, each elementary transform right-multiplied onto
+//! the frame so far ([`crate::kinematics::transform`]); the graph folds zeros and ones
+//! and shares equal values. Optionally the tail of the chain is built in a middle frame
+//! ([`Pivot`]) and rotated out once at the end.
+
+use crate::algebra::angles::AngleDef;
+use crate::algebra::graph::{Graph, Id};
+use crate::algebra::poly::Var;
+use crate::chain::{AxisAt, Chain, Elem, Link, Motion};
+use crate::kinematics::entries::Entries;
+use crate::kinematics::transform::{compose, point, rotate, translate, turn, Transform};
+use crate::model::options::Deadline;
+use crate::model::robot::JointKind;
+
+/// The symbolic frames of a chain and the graph they live in.
+#[derive(Clone, Debug)]
+pub struct SymbolicChain {
+    /// The straight-line code and its ring.
+    pub graph: Graph,
+    /// Sine/cosine pairs, in order of first use.
+    pub angles: Vec<AngleDef>,
+    /// Ring variables of prismatic joints: `(joint, var)`.
+    pub joint_vars: Vec<(usize, Var)>,
+    /// Ring variables of named parameters: `(name, var)`.
+    pub param_vars: Vec<(String, Var)>,
+    /// `base · A1 ⋯ Ai` for i = 1..=N.
+    pub frames: Vec<Transform>,
+    /// The base frame (frame 0).
+    pub base: Transform,
+    /// `base · A1 ⋯ AN · tool`.
+    pub tool: Transform,
+    /// For each joint: its axis (unit vector it turns about or slides along) and a
+    /// point on it, in world coordinates.
+    pub axes: Vec<([Id; 3], [Id; 3])>,
+}
+
+/// The chain from a middle frame `k`: `T_k⁻¹ · T_i` for the frames after it.
+///
+/// Expressing the tail of the chain in frame `k` removes joints 1..k from every
+/// product (for a UR arm in frame 1, the elbow plane is 2-D); the world values are
+/// recovered with one rotation by `R_k` at the end. Which `k` is cheapest depends
+/// on the arm, so the model tries several and counts operations.
+#[derive(Clone, Debug)]
+pub struct Pivot {
+    /// `k`: joints `k+1..=N` (0-based `k..N`) have local axes.
+    pub k: usize,
+    /// `base · A1 ⋯ Ak` in world coordinates.
+    pub frame: Transform,
+    /// Axes and points of joints `k..N` (0-based) in frame `k`.
+    pub axes: Vec<([Id; 3], [Id; 3])>,
+    /// The tool in frame `k`.
+    pub tool: Transform,
+}
+
+/// An elementary transform with its arguments as nodes.
+#[derive(Clone, Copy, Debug)]
+enum Step {
+    Turn { axis: usize, s: Id, c: Id },
+    Move { axis: usize, d: Id },
+}
+
+impl SymbolicChain {
+    /// Build the frames left to right from the base.
+    pub fn new(chain: &Chain, max_terms: usize) -> SymbolicChain {
+        SymbolicChain::build(chain, max_terms, None, Deadline::never()).0
+    }
+
+    /// Build the frames; with `pivot = Some(k)` (`1 ≤ k < N`) the frames after `k` are
+    /// built in frame `k` and composed with `T_k` (see [`Pivot`]). The graph drops new
+    /// normal forms once `deadline` has passed (the frames are still complete and
+    /// correct, only less simplified), and keeps it for the phases that build on it.
+    pub fn build(
+        chain: &Chain,
+        max_terms: usize,
+        pivot: Option<usize>,
+        deadline: Deadline,
+    ) -> (SymbolicChain, Option<Pivot>) {
+        let mut graph = Graph::new(Default::default(), max_terms);
+        graph.deadline = deadline;
+        let mut b = Entries::new(graph);
+        let mut t = Transform::identity(&mut b.graph);
+        let steps = fixed(&mut b, &chain.base);
+        t = apply_all(&mut b.graph, t, &steps);
+        let base = t;
+        let pivot_at = pivot.filter(|&k| k >= 1 && k < chain.dof());
+        let mut frames = Vec::new();
+        let mut axes = Vec::new();
+        // In pivot mode, `t` is local to frame k after the pivot and `world` maps it out.
+        let mut world: Option<Transform> = None;
+        let mut local_axes = Vec::new();
+        for (i, link) in chain.links.iter().enumerate() {
+            if pivot_at == Some(i) {
+                world = Some(t);
+                t = Transform::identity(&mut b.graph);
+            }
+            let axis;
+            (t, axis) = unroll(&mut b, t, i, link);
+            match &world {
+                Some(w) => {
+                    local_axes.push(axis);
+                    let z = rotate(&mut b.graph, w, axis.0);
+                    let o = point(&mut b.graph, w, axis.1);
+                    axes.push((z, o));
+                    frames.push(compose(&mut b.graph, w, &t));
+                }
+                None => {
+                    axes.push(axis);
+                    frames.push(t);
+                }
+            }
+        }
+        let steps = fixed(&mut b, &chain.tool);
+        t = apply_all(&mut b.graph, t, &steps);
+        let (tool, pivot) = match (world, pivot_at) {
+            (Some(w), Some(k)) => (
+                compose(&mut b.graph, &w, &t),
+                Some(Pivot {
+                    k,
+                    frame: w,
+                    axes: local_axes,
+                    tool: t,
+                }),
+            ),
+            _ => (t, None),
+        };
+        let sym = SymbolicChain {
+            graph: b.graph,
+            angles: b.angles,
+            joint_vars: b.joint_vars,
+            param_vars: b.param_vars,
+            frames,
+            base,
+            tool,
+            axes,
+        };
+        (sym, pivot)
+    }
+}
+
+/// One link onto frame `t`: the new frame, and the joint's axis and a point on it.
+///
+/// The link's entries become nodes first, outward from the joint (its motion, the
+/// transforms after it, then those before it, nearest first: θ, d, a, α for a DH row in
+/// either convention); the order only decides how the generated code orders operands.
+fn unroll(b: &mut Entries, t: Transform, i: usize, link: &Link) -> (Transform, ([Id; 3], [Id; 3])) {
+    let motion = motion(b, i, &link.motion);
+    let after = fixed(b, &link.after);
+    let mut before: Vec<Step> = link.before.iter().rev().map(|e| step(b, e)).collect();
+    before.reverse();
+    let mut t = apply_all(&mut b.graph, t, &before);
+    let a = link.motion.axis.index();
+    let mut axis = (t.cols[a], t.p);
+    t = apply(&mut b.graph, t, motion);
+    t = apply_all(&mut b.graph, t, &after);
+    if link.axis_at == AxisAt::LinkFrame {
+        axis = (t.cols[a], t.p);
+    }
+    if link.motion.sign < 0 {
+        // The joint runs against its axis: its velocity is along −axis.
+        let g = &mut b.graph;
+        axis.0 = axis.0.map(|x| g.neg(x));
+    }
+    (t, axis)
+}
+
+/// The joint's motion as a step: `sin_cos(±q + offset)`, or `±q + offset` along the axis.
+fn motion(b: &mut Entries, i: usize, m: &Motion) -> Step {
+    let axis = m.axis.index();
+    match m.kind {
+        JointKind::Revolute => {
+            let (s, c) = b.joint_angle(i, m.sign, &m.offset);
+            Step::Turn { axis, s, c }
+        }
+        JointKind::Prismatic => {
+            let q = b.joint_var(i);
+            let q = if m.sign < 0 { b.graph.neg(q) } else { q };
+            let k = b.length(&m.offset);
+            let d = b.graph.add(q, k);
+            Step::Move { axis, d }
+        }
+    }
+}
+
+fn step(b: &mut Entries, e: &Elem) -> Step {
+    match e {
+        Elem::Rot(axis, v) => {
+            let (s, c) = b.const_angle(v);
+            Step::Turn {
+                axis: axis.index(),
+                s,
+                c,
+            }
+        }
+        Elem::Trans(axis, v) => Step::Move {
+            axis: axis.index(),
+            d: b.length(v),
+        },
+    }
+}
+
+/// Constant transforms as steps, their entries made nodes in order.
+fn fixed(b: &mut Entries, elems: &[Elem]) -> Vec<Step> {
+    elems.iter().map(|e| step(b, e)).collect()
+}
+
+fn apply(g: &mut Graph, t: Transform, s: Step) -> Transform {
+    match s {
+        Step::Turn { axis, s, c } => turn(g, &t, axis, s, c),
+        Step::Move { axis, d } => translate(g, &t, axis, d),
+    }
+}
+
+fn apply_all(g: &mut Graph, t: Transform, steps: &[Step]) -> Transform {
+    steps.iter().fold(t, |t, &s| apply(g, t, s))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::raw::{RawJoint, RawRobot, RawValue};
+    use crate::model::validate::validate;
+    use crate::model::value::Rat;
+    use num_traits::Zero;
+
+    fn planar_rr() -> Chain {
+        let row = |a: &str| RawJoint {
+            kind: Some("revolute".into()),
+            fields: vec![
+                ("a".into(), RawValue::Text(a.into())),
+                ("alpha".into(), RawValue::Number(0.0)),
+                ("d".into(), RawValue::Number(0.0)),
+            ],
+        };
+        let robot = validate(&RawRobot {
+            name: Some("RR".into()),
+            convention: Some("standard".into()),
+            params: vec![
+                ("L1".into(), RawValue::Number(1.0)),
+                ("L2".into(), RawValue::Number(1.0)),
+            ],
+            joints: vec![row("L1"), row("L2")],
+            ..Default::default()
+        })
+        .unwrap();
+        robot.chain()
+    }
+
+    #[test]
+    fn planar_rr_position_is_textbook() {
+        let sym = SymbolicChain::new(&planar_rr(), 1000);
+        let g = &sym.graph;
+        let px = g.nf(sym.tool.p[0]).unwrap();
+        assert_eq!(
+            g.ring.display(px).to_string(),
+            "-s1*s2*L2 + c1*L1 + c1*c2*L2"
+        );
+        assert_eq!(g.as_num(sym.tool.p[2]), Some(&Rat::zero()));
+    }
+}

@@ -1,0 +1,84 @@
+//! One model through the simplify passes, in order: the e-graph polish of every inline
+//! expression, then the sign pass, each result checked before it replaces the original;
+//! then the notes on what the exact core could not keep.
+
+use crate::algebra::graph::Id;
+use crate::kinematics::model::Model;
+use crate::model::options::Options;
+use crate::simplify::check::Probe;
+use crate::simplify::{polish, signs};
+
+/// `model` simplified: same values, fewer operations (or, where a check fails, the
+/// unsimplified expressions and a note).
+pub fn simplify(mut model: Model, options: &Options) -> Model {
+    polish_all(&mut model, options);
+    move_signs(&mut model);
+    note_lost_normal_forms(&mut model);
+    model
+}
+
+/// The e-graph polish of every inline expression (checked inside [`polish::polish`]).
+fn polish_all(model: &mut Model, options: &Options) {
+    let mut report = polish::Report::default();
+    let outputs = model.ids();
+    let ids = polish::polish(
+        &mut model.sym,
+        &outputs,
+        &options.budget,
+        &options.extra_rewrites,
+        &mut report,
+    );
+    model.set_ids(ids);
+    model.fused = model.fused_ids();
+    model.notes.extend(report.notes.iter().cloned());
+    model.polish = report;
+}
+
+/// Signs chosen for the fewest negations ([`signs`]), once per generated function: a
+/// node the function would compute with both signs would be computed twice, so `frames`
+/// is one problem and the fused `fk_and_jacobian` has its own. The pass copies normal
+/// forms instead of recomputing them, so it is checked by value.
+fn move_signs(model: &mut Model) {
+    let groups = model.groups();
+    let g = &mut model.sym.graph;
+    let signed: Vec<Id> = groups
+        .iter()
+        .flat_map(|group| signs::assign(g, group))
+        .collect();
+    let fused_before = model.fused.clone();
+    let fused_after = signs::assign(g, &fused_before);
+    let probe = Probe::new(&model.sym);
+    let before = model.ids().into_iter().chain(fused_before.iter().copied());
+    let after = signed.iter().copied().chain(fused_after.iter().copied());
+    let bad = before
+        .zip(after)
+        .any(|(b, a)| a != b && !probe.same_values(&model.sym.graph, a, b));
+    if bad {
+        model.notes.push(
+            "internal check failed after moving signs: the unsimplified expressions are emitted"
+                .into(),
+        );
+    } else {
+        model.set_ids(signed);
+        model.fused = fused_after;
+    }
+}
+
+/// Outputs whose expression reached a node without normal form have none: say so.
+fn note_lost_normal_forms(model: &mut Model) {
+    let lost = model.without_normal_form();
+    let g = &model.sym.graph;
+    if g.nf_overflows > 0 {
+        model.notes.push(format!(
+            "{} expressions exceeded the normal-form budget of {} terms: they are shared structurally only{lost}",
+            g.nf_overflows, g.max_terms
+        ));
+    }
+    if g.nf_timeouts > 0 {
+        model.notes.push(format!(
+            "{} ran out while building normal forms: {} were not computed, and what is built on them is shared structurally only{lost}",
+            g.deadline.describe(),
+            g.nf_timeouts
+        ));
+    }
+}
