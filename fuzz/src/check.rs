@@ -70,7 +70,7 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
         return Outcome::Generated; // rounding would swamp any tolerance
     }
     let chain = robot.chain();
-    let Derived { model, det } = derive(&chain, options);
+    let Derived { model, det, .. } = derive(&chain, options);
     let det = det.and_then(Result::ok);
     let n = robot.dof();
     let q: Vec<f64> = (0..n)

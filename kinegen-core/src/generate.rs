@@ -12,8 +12,10 @@ use crate::emit::functions::{functions, Stats};
 use crate::emit::rust::{item, ItemHeader};
 use crate::kinematics::det::closed_form::{self, DetModel};
 use crate::kinematics::det::structural::square_rows;
+use crate::kinematics::ik::{self, IkModel};
 use crate::kinematics::model::Model;
 use crate::model::options::{Deadline, Options};
+use crate::model::robot::Scalar;
 use crate::simplify::order::cheapest;
 
 /// The engine's output.
@@ -47,6 +49,9 @@ pub struct Derived {
     /// The closed-form determinant of the square Jacobian (`Err`: why not; `None`: the
     /// Jacobian is not square).
     pub det: Option<Result<DetModel, String>>,
+    /// Closed-form IK (`Err`: why no family fits; `None`: not attempted — f32 robots,
+    /// whose runtime solvers are f64 only).
+    pub ik: Option<Result<IkModel, String>>,
 }
 
 /// Generate the Rust item for a chain, within `options.budget` (its `time_ms` counts
@@ -64,7 +69,7 @@ pub struct Derived {
 pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
     let derived = derive(chain, options);
     // What the type holds: each method's straight-line code and doc, the constants.
-    let functions = functions(chain, &derived.model, &derived.det);
+    let functions = functions(chain, &derived.model, &derived.det, &derived.ik);
     // Printed, and parsed into tokens.
     let tokens = item(chain, header, &functions);
     let mut notes = derived.model.notes;
@@ -85,5 +90,7 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
     let mut model = cheapest(chain, options, deadline);
     // The determinant of the square Jacobian, factored, in closed form.
     let det = square_rows(chain).map(|_| closed_form::determinant(chain, &mut model));
-    Derived { model, det }
+    // The IK family, decided exactly from the axes at q = 0, and its geometry.
+    let ik = (chain.scalar == Scalar::F64).then(|| ik::model(chain, options.budget.max_terms()));
+    Derived { model, det, ik }
 }

@@ -134,7 +134,7 @@ fn close(got: f64, want: f64, what: &str) {
 /// reference: FK, both Jacobians and, when there is one, the closed-form determinant.
 fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: usize) {
     let chain = robot.chain();
-    let Derived { model, det } = derive(&chain, options);
+    let Derived { model, det, .. } = derive(&chain, options);
     let det = det.and_then(Result::ok);
     let num = NumericRobot::new(robot).unwrap();
     let n = robot.dof();

@@ -52,6 +52,11 @@ kinegen::kinematics! {
 }
 kinegen::kinematics! {
     /// Franka Emika Panda (modified DH, flange and hand).
+    ///
+    /// No closed-form IK: with any one joint locked, no remaining six axes form a family
+    /// of `kinegen::ik::families` (the compile-time note lists each broken condition); the
+    /// numerical solvers of `kinegen::ik` serve it.
+    #[allow(deprecated)]
     pub struct Panda = "panda.toml";
 }
 kinegen::kinematics! {
@@ -76,5 +81,9 @@ kinegen::kinematics! {
 }
 kinegen::kinematics! {
     /// Cylindrical RPP arm.
+    ///
+    /// No closed-form IK family (its third axis is horizontal): the numerical solvers of
+    /// `kinegen::ik` serve it.
+    #[allow(deprecated)]
     pub struct CylindricalRpp = "cylindrical_rpp.toml";
 }

@@ -7,8 +7,10 @@ use crate::chain::Chain;
 use crate::emit::code::{Body, Coder, OpCount};
 use crate::emit::docs::{formula_doc, matrix_names};
 use crate::emit::formulas::Formulas;
+use crate::emit::ik::{items as ik_items, CheckImpl};
 use crate::kinematics::det::closed_form::DetModel;
 use crate::kinematics::det::structural::square_rows;
+use crate::kinematics::ik::IkModel;
 use crate::kinematics::model::Model;
 use crate::model::robot::Scalar;
 
@@ -37,6 +39,15 @@ pub enum MethodBody {
     },
     /// A single expression (the numeric determinant fallback).
     Expr(String),
+    /// Other arguments than `q`: `pub fn name(&self, args) -> ret { lets; result }`.
+    Custom {
+        /// The arguments after `&self` (`pose: &[[f64; 4]; 4]`).
+        args: String,
+        /// Statements.
+        lets: Vec<String>,
+        /// The returned expression.
+        result: String,
+    },
 }
 
 /// A constant `pub const name: ty = value;`.
@@ -87,6 +98,8 @@ pub struct Functions {
     pub notes: Vec<String>,
     /// The float type name (`f64`, `f32`).
     pub float: &'static str,
+    /// The `Check` impl closed-form IK needs, when there is an `ik`.
+    pub check: Option<CheckImpl>,
 }
 
 /// Which square Jacobian `jacobian_det` takes the determinant of.
@@ -98,12 +111,14 @@ pub enum DetOf {
     Task,
 }
 
-/// The generated type's contents for `chain`, from its simplified `model` and its
-/// determinant (`None` when the Jacobian is not square).
+/// The generated type's contents for `chain`, from its simplified `model`, its
+/// determinant (`None` when the Jacobian is not square) and its closed-form IK (`None`:
+/// not attempted).
 pub fn functions(
     chain: &Chain,
     model: &Model,
     det: &Option<Result<DetModel, String>>,
+    ik: &Option<Result<IkModel, String>>,
 ) -> Functions {
     let coder = Coder::new(chain, &model.sym);
     let mut out = Out {
@@ -122,6 +137,21 @@ pub fn functions(
     out.task_jacobian();
     let det_of = out.determinant(det);
     out.formulas_and_limits();
+    let check = match ik {
+        Some(Ok(m)) => {
+            let factors = matches!(det, Some(Ok(_)));
+            let (items, check) = ik_items(chain, m, factors);
+            out.items.extend(items);
+            Some(check)
+        }
+        Some(Err(why)) if why != crate::kinematics::ik::family::OUT_OF_DOMAIN => {
+            out.notes.push(format!(
+                "no closed-form inverse kinematics ({why}); the numerical solvers of `kinegen::ik` serve this robot"
+            ));
+            None
+        }
+        _ => None,
+    };
     let fields = chain
         .params
         .iter()
@@ -137,6 +167,7 @@ pub fn functions(
         stats: out.stats,
         notes: out.notes,
         float: coder.float(),
+        check,
     }
 }
 

@@ -8,6 +8,7 @@ use proc_macro2::{Ident, TokenStream};
 use crate::chain::Chain;
 use crate::emit::docs::struct_doc;
 use crate::emit::functions::{Const, DetOf, Functions, Item, Method, MethodBody};
+use crate::emit::ik::CheckImpl;
 use crate::model::robot::Scalar;
 
 /// What the generated item looks like from outside: `#[attrs] vis struct ident`.
@@ -67,6 +68,9 @@ pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenS
     );
     if chain.scalar == Scalar::F64 {
         items.push_str(&traits(chain, &ident, functions));
+    }
+    if let Some(check) = &functions.check {
+        items.push_str(&check_impl(chain, &ident, check));
     }
     match syn::parse_str::<syn::File>(&items) {
         Ok(file) => quote::quote!(#file),
@@ -143,6 +147,28 @@ fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
     tr
 }
 
+/// `impl Check<N>`: what the IK's `finish` step evaluates for least-squares and singular
+/// branches.
+fn check_impl(chain: &Chain, ident: &str, check: &CheckImpl) -> String {
+    let n = chain.dof();
+    let residual = match &check.task_rows {
+        None => "::kinegen::ik::solutions::residual(&self.fk(q), pose)".to_string(),
+        Some(rows) => {
+            format!("::kinegen::ik::solutions::task_residual(&self.fk(q), pose, &{rows:?})")
+        }
+    };
+    let singular = if check.factors {
+        "::kinegen::ik::solutions::vanishing(&self.singular_factors(q))"
+    } else {
+        "{ let _ = q; 0 }"
+    };
+    format!(
+        "impl ::kinegen::ik::solutions::Check<{n}> for {ident} {{\n\
+         #[inline] fn residual(&self, q: &[f64; {n}], pose: &::kinegen::ik::geometry::Pose) -> f64 {{ {residual} }}\n\
+         #[inline] fn singular(&self, q: &[f64; {n}]) -> u32 {{ {singular} }}\n}}\n"
+    )
+}
+
 fn doc_lines(out: &mut String, doc: &str) {
     for line in doc.lines() {
         let _ = writeln!(out, "///{}{line}", if line.is_empty() { "" } else { " " });
@@ -163,6 +189,14 @@ fn method(out: &mut String, m: &Method, qty: &str) {
                 out,
                 "#[inline]\n#[must_use]\npub fn {name}(&self, q: {qty}) -> {ret} {{\nlet _ = q;\n{}\n{result}\n}}",
                 body.lets.join("\n"),
+            );
+        }
+        MethodBody::Custom { args, lets, result } => {
+            doc_lines(out, doc);
+            let _ = writeln!(
+                out,
+                "#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\n{}\n{result}\n}}",
+                lets.join("\n"),
             );
         }
         MethodBody::Expr(e) => {

@@ -55,6 +55,24 @@ pub struct Pivot {
     pub tool: Transform,
 }
 
+/// Which joints are variables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Joints {
+    /// All of them.
+    Variable,
+    /// None but `keep`: the others are at `q = 0`.
+    Zero { keep: Option<usize> },
+}
+
+impl Joints {
+    fn variable(self, i: usize) -> bool {
+        match self {
+            Joints::Variable => true,
+            Joints::Zero { keep } => keep == Some(i),
+        }
+    }
+}
+
 /// An elementary transform with its arguments as nodes.
 #[derive(Clone, Copy, Debug)]
 enum Step {
@@ -78,6 +96,25 @@ impl SymbolicChain {
         pivot: Option<usize>,
         deadline: Deadline,
     ) -> (SymbolicChain, Option<Pivot>) {
+        SymbolicChain::build_with(chain, max_terms, pivot, deadline, Joints::Variable)
+    }
+
+    /// The frames at `q = 0`: every joint fixed at its zero (its offset), except joint
+    /// `keep` (0-based), which stays a variable. Axes, points and the tool are then
+    /// constants — polynomials in the parameters (and in `keep`'s sine and cosine) — whose
+    /// exact normal forms decide which joint axes are parallel or meet.
+    pub fn at_zero(chain: &Chain, max_terms: usize, keep: Option<usize>) -> SymbolicChain {
+        let joints = Joints::Zero { keep };
+        SymbolicChain::build_with(chain, max_terms, None, Deadline::never(), joints).0
+    }
+
+    fn build_with(
+        chain: &Chain,
+        max_terms: usize,
+        pivot: Option<usize>,
+        deadline: Deadline,
+        joints: Joints,
+    ) -> (SymbolicChain, Option<Pivot>) {
         let mut graph = Graph::new(Default::default(), max_terms);
         graph.deadline = deadline;
         let mut b = Entries::new(graph);
@@ -97,7 +134,7 @@ impl SymbolicChain {
                 t = Transform::identity(&mut b.graph);
             }
             let axis;
-            (t, axis) = unroll(&mut b, t, i, link);
+            (t, axis) = unroll(&mut b, t, i, link, joints.variable(i));
             match &world {
                 Some(w) => {
                     local_axes.push(axis);
@@ -145,8 +182,23 @@ impl SymbolicChain {
 /// The link's entries become nodes first, outward from the joint (its motion, the
 /// transforms after it, then those before it, nearest first: θ, d, a, α for a DH row in
 /// either convention); the order only decides how the generated code orders operands.
-fn unroll(b: &mut Entries, t: Transform, i: usize, link: &Link) -> (Transform, ([Id; 3], [Id; 3])) {
-    let motion = motion(b, i, &link.motion);
+fn unroll(
+    b: &mut Entries,
+    t: Transform,
+    i: usize,
+    link: &Link,
+    variable: bool,
+) -> (Transform, ([Id; 3], [Id; 3])) {
+    let motion = if variable {
+        motion(b, i, &link.motion)
+    } else {
+        // At q = 0 the joint is its offset.
+        let axis = link.motion.axis;
+        match link.motion.kind {
+            JointKind::Revolute => step(b, &Elem::Rot(axis, link.motion.offset.clone())),
+            JointKind::Prismatic => step(b, &Elem::Trans(axis, link.motion.offset.clone())),
+        }
+    };
     let after = fixed(b, &link.after);
     let mut before: Vec<Step> = link.before.iter().rev().map(|e| step(b, e)).collect();
     before.reverse();
