@@ -26,6 +26,11 @@ fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
     }
 }
 
+/// The part of `v` orthogonal to the unit `k`.
+fn flat(k: &V3, v: &V3) -> V3 {
+    v - k * k.dot(v)
+}
+
 /// A vector orthogonal to the unit `k`.
 fn orthogonal(k: &V3) -> V3 {
     let e = if k.x.abs() < 0.6 {
@@ -117,7 +122,15 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> 
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), free[0]);
     for &q1 in t1.as_slice() {
         let v = rot(&(-h1), q1) * p16 - p12;
-        let t3 = sp3(&p34, &(-p23), &h3, v.norm(), free[2]);
+        // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial
+        // offsets in the distances, whose rounding would blur the elbow's double root.
+        let t3 = sp3(
+            &flat(&h3, &p34),
+            &flat(&h3, &(-p23)),
+            &h3,
+            flat(&h3, &v).norm(),
+            free[2],
+        );
         for &q3 in t3.as_slice() {
             let (q2, f2) = sp1(&(p23 + rot(&h3, q3) * p34), &v, &h2, free[1]);
             let fit = t1.fit.and(t3.fit).and(f2);
@@ -175,8 +188,9 @@ pub fn spherical_two_intersecting_prismatic(
     let b = h3.dot(&u);
     let c = u.norm_squared() - p16.norm_squared();
     let disc = b * b - c;
-    let scale = (b * b).max(u.norm_squared()).max(1e-300);
-    let (roots, fit): ([f64; 2], Fit) = if disc.abs() <= super::subproblems::ROOT_MERGE * scale {
+    let terms = b * b + u.norm_squared() + p16.norm_squared();
+    let merge = super::subproblems::ROOT_MERGE * f64::EPSILON * terms;
+    let (roots, fit): ([f64; 2], Fit) = if disc.abs() <= merge {
         ([-b, -b], Fit::Double)
     } else if disc < 0.0 {
         ([-b, -b], Fit::LeastSquares)
@@ -245,7 +259,14 @@ pub fn three_parallel_two_intersecting(
             };
             if let Arm::Q4(q4) = mode {
                 let known = p34 + rot(&h4, q4) * p45;
-                if sp3(&known, &(-p23), &h3, arm.norm(), 0.0).fit == Fit::LeastSquares {
+                let t = sp3(
+                    &flat(&h2, &known),
+                    &flat(&h2, &(-p23)),
+                    &h3,
+                    flat(&h2, &arm).norm(),
+                    0.0,
+                );
+                if t.fit == Fit::LeastSquares {
                     let hint = free[1] + s3 * free[2] + s4 * free[3];
                     mode = Arm::Theta(mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint));
                 }
@@ -254,7 +275,14 @@ pub fn three_parallel_two_intersecting(
                 Arm::Theta(theta) => (arm - rot(&h2, theta) * p45, p34),
                 Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45),
             };
-            let t3 = sp3(&known, &(-p23), &h3, reach.norm(), free[2]);
+            // In the plane ⟂ h2 (the components along h2 agree by step 2).
+            let t3 = sp3(
+                &flat(&h2, &known),
+                &flat(&h2, &(-p23)),
+                &h3,
+                flat(&h2, &reach).norm(),
+                free[2],
+            );
             for &q3 in t3.as_slice() {
                 let (q2, f2) = sp1(&(p23 + rot(&h3, q3) * known), &reach, &h2, free[1]);
                 let (q4, theta) = match mode {
@@ -284,9 +312,8 @@ enum Arm {
 /// the middle of the elbow's reach (`‖p23⊥ + R3 p34⊥‖` ranges over `[|a − b|, a + b]`
 /// across the plane ⟂ h2; the middle, `max(a, b)`, is reachable whatever the pose).
 fn mid_range_theta(h2: &V3, arm: &V3, p23: &V3, p34: &V3, p45: &V3, hint: f64) -> f64 {
-    let flat = |v: &V3| v - h2 * h2.dot(v);
-    let r = flat(p23).norm().max(flat(p34).norm());
-    let roots = sp3(&flat(p45), &flat(arm), h2, r, hint);
+    let r = flat(h2, p23).norm().max(flat(h2, p34).norm());
+    let roots = sp3(&flat(h2, p45), &flat(h2, arm), h2, r, hint);
     let gap = |t: f64| wrap(t - hint).abs();
     let mut best = roots.theta[0];
     for &t in roots.as_slice() {

@@ -11,6 +11,8 @@
 //!
 //! No allocation anywhere: solution sets and solver state are on the stack.
 
+#[cfg(feature = "std")]
+pub mod dispatch;
 pub mod families;
 pub mod geometry;
 pub mod numeric;

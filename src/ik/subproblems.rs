@@ -4,16 +4,29 @@
 //! Every axis `k` is a unit vector. Angles come back as radians; a result says whether it
 //! is exact, least squares (the data admit no exact solution, so the nearest is given),
 //! or free (the data leave the angle undetermined — a singular configuration — and the
-//! caller's `free` value is used). Two roots closer than [`ROOT_MERGE`] (relative, in the
-//! discriminant) are one double root: that is what an exactly singular pose computed in
-//! floating point looks like, and splitting it into two roots `±1e-8` apart would make
-//! the angles after it meaningless.
+//! caller's `free` value is used). A discriminant within [`ROOT_MERGE`] rounding errors of
+//! zero — the error estimated from the size of the terms it was computed from — is a
+//! double root: that is what an exactly singular pose computed in floating point looks
+//! like, and splitting it into two roots `±1e-8` apart would make the angles after it
+//! meaningless.
 
 use super::geometry::{scale, sqrt0, V3};
 use crate::math::atan2;
 
-/// Relative size of a discriminant below which two roots are one double root.
-pub const ROOT_MERGE: f64 = 1e-13;
+/// A discriminant smaller than this many times its estimated rounding error
+/// (`ε · terms`) is zero: the two roots are one double root.
+pub const ROOT_MERGE: f64 = 64.0;
+
+/// Machine epsilon.
+const EPS: f64 = f64::EPSILON;
+
+/// A discriminant below this fraction of `r²` is also a double root: roots closer than
+/// `2√1e-11 ≈ 6e-6` rad. Errors upstream (the angles a subproblem's data came from)
+/// blur a double root more than its own terms' rounding; taking the two roots as one
+/// moves the solution by at most ~3e-6 rad along a direction where the equation is
+/// flat to second order (≤ 1e-11 relative), and the branch is checked against `fk`
+/// afterwards anyway (its fit is `Double`).
+const MERGE_RELATIVE: f64 = 1e-11;
 
 /// Relative size (squared) of a vector's component off an axis below which the vector is
 /// taken to lie on the axis: the rotation about that axis leaves it where it is.
@@ -100,8 +113,9 @@ pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
 
 /// `θ = φ ± atan2(√(r² − b²), b)` for `a cos θ + a' sin θ = b` written as
 /// `r cos(θ − φ) = b`: two roots, a double root, or the least-squares `φ` / `φ + π`.
-/// `mag2` is the squared size of the data (`‖h‖²‖p‖²`): `r` is zero relative to it.
-fn cos_equation(ca: f64, sa: f64, b: f64, mag2: f64, free: f64) -> Roots {
+/// `mag2` is the squared size of the data (`‖h‖²‖p‖²`): `r` is zero relative to it;
+/// `terms` the size of the terms `b` was computed from (its rounding error is `ε terms`).
+fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> Roots {
     let rr = ca * ca + sa * sa;
     if rr <= ON_AXIS * scale(mag2) {
         // r = 0: every θ gives the same value; exact only if that is b.
@@ -114,7 +128,8 @@ fn cos_equation(ca: f64, sa: f64, b: f64, mag2: f64, free: f64) -> Roots {
     }
     let phi = atan2(sa, ca);
     let disc = rr - b * b;
-    if disc.abs() <= ROOT_MERGE * rr {
+    let noise = EPS * (2.0 * rr.sqrt() * (terms + mag2.sqrt()) + rr);
+    if disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr) {
         let theta = if b >= 0.0 {
             phi
         } else {
@@ -142,12 +157,18 @@ fn cos_equation(ca: f64, sa: f64, b: f64, mag2: f64, free: f64) -> Roots {
 /// plane `hᵀ x = d`. Two roots, a double root (the circle touches the plane), least
 /// squares (it misses the plane), or free (the circle lies in a plane `hᵀ x = d`).
 pub fn sp4(h: &V3, p: &V3, k: &V3, d: f64, free: f64) -> Roots {
+    sp4_terms(h, p, k, d, d.abs(), free)
+}
+
+/// SP4 where `d` was computed from terms of size `terms` (its rounding error).
+fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
     // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
     let pp = off_axis(k, p);
     let ca = h.dot(&pp);
     let sa = h.dot(&k.cross(p));
     let b = d - h.dot(k) * k.dot(p);
-    cos_equation(ca, sa, b, h.norm_squared() * p.norm_squared(), free)
+    let mag2 = h.norm_squared() * p.norm_squared();
+    cos_equation(ca, sa, b, terms, mag2, free)
 }
 
 /// **SP3** — `θ` with `‖rot(k, θ) p1 − p2‖ = d`: where the circle of `p1` about `k` meets
@@ -156,8 +177,9 @@ pub fn sp4(h: &V3, p: &V3, k: &V3, d: f64, free: f64) -> Roots {
 /// axis).
 pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
     // ‖rot p1 − p2‖² = ‖p1‖² + ‖p2‖² − 2 p2ᵀ rot(k, θ) p1 = d²  ⇔  p2ᵀ rot p1 = (…)/2
-    let rhs = 0.5 * (p1.norm_squared() + p2.norm_squared() - d * d);
-    sp4(p2, p1, k, rhs, free)
+    let (n1, n2) = (p1.norm_squared(), p2.norm_squared());
+    let rhs = 0.5 * (n1 + n2 - d * d);
+    sp4_terms(p2, p1, k, rhs, 0.5 * (n1 + n2 + d * d), free)
 }
 
 /// **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
@@ -182,7 +204,8 @@ pub fn sp2(p1: &V3, p2: &V3, k1: &V3, k2: &V3, free: (f64, f64)) -> ([(f64, f64)
     let rr = 0.5 * (r1 + r2);
     let g2 = (rr - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12) / nn;
     let base = k1 * alpha + k2 * beta;
-    let zs: ([V3; 2], usize) = if g2.abs() <= ROOT_MERGE * scale(rr) / nn {
+    let terms = rr + alpha * alpha + beta * beta + 2.0 * (alpha * beta * c12).abs();
+    let zs: ([V3; 2], usize) = if g2.abs() <= ROOT_MERGE * EPS * terms / nn {
         fit = fit.and(Fit::Double);
         ([base, base], 1)
     } else if g2 < 0.0 {

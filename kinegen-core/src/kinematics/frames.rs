@@ -6,9 +6,10 @@
 //! and shares equal values. Optionally the tail of the chain is built in a middle frame
 //! ([`Pivot`]) and rotated out once at the end.
 
-use crate::algebra::angles::AngleDef;
+use crate::algebra::angles::{AngleDef, AngleSource};
 use crate::algebra::graph::{Graph, Id};
 use crate::algebra::poly::Var;
+use crate::algebra::poly::VarKind;
 use crate::chain::{AxisAt, Chain, Elem, Link, Motion};
 use crate::kinematics::entries::Entries;
 use crate::kinematics::transform::{compose, point, rotate, translate, turn, Transform};
@@ -174,6 +175,45 @@ impl SymbolicChain {
             axes,
         };
         (sym, pivot)
+    }
+}
+
+impl SymbolicChain {
+    /// Values of the ring's variables at joint values `q` with the chain's parameters:
+    /// what the generated code computes before its first operation. Used to evaluate
+    /// the symbolic outputs directly (tests, the CLI's `eval`).
+    pub fn variables(&self, chain: &Chain, q: &[f64]) -> Vec<f64> {
+        let ring = &self.graph.ring;
+        let mut vals = vec![f64::NAN; ring.len()];
+        for (v, slot) in vals.iter_mut().enumerate() {
+            *slot = match ring.kind(v as u32) {
+                VarKind::Joint(j) => q[*j],
+                VarKind::Param(n) => chain.param_value(n),
+                VarKind::Sqrt(k) => (*k as f64).sqrt(),
+                VarKind::Sin(_) | VarKind::Cos(_) => continue,
+            };
+        }
+        for a in &self.angles {
+            let x = match &a.source {
+                AngleSource::Joint {
+                    joint,
+                    sign,
+                    offset,
+                } => f64::from(*sign) * q[*joint] + chain.eval(offset),
+                AngleSource::Constant(v) => chain.eval(v),
+            };
+            vals[a.vars.0 as usize] = x.sin();
+            vals[a.vars.1 as usize] = x.cos();
+        }
+        vals
+    }
+
+    /// Evaluate nodes at `q`.
+    pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
+        let vals = self.variables(chain, q);
+        ids.iter()
+            .map(|&id| self.graph.eval(id, &|v| vals[v as usize]))
+            .collect()
     }
 }
 

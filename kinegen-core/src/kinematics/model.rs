@@ -5,9 +5,7 @@
 //! [`crate::kinematics::frames::Pivot`]); the simplify stage rewrites their
 //! expressions ([`Model::set_ids`]) without changing a value.
 
-use crate::algebra::angles::AngleSource;
 use crate::algebra::graph::Id;
-use crate::algebra::poly::VarKind;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
 use crate::kinematics::jacobian::{self, Rows};
@@ -173,40 +171,14 @@ impl Model {
 }
 
 impl Model {
-    /// Values of the ring's variables at joint values `q` with the chain's parameters:
-    /// what the generated code computes before its first operation. Used to evaluate
-    /// the symbolic outputs directly (tests, the CLI's `eval`).
+    /// Values of the ring's variables at joint values `q` with the chain's parameters
+    /// (see [`SymbolicChain::variables`]).
     pub fn variables(&self, chain: &Chain, q: &[f64]) -> Vec<f64> {
-        let ring = &self.sym.graph.ring;
-        let mut vals = vec![f64::NAN; ring.len()];
-        for (v, slot) in vals.iter_mut().enumerate() {
-            *slot = match ring.kind(v as u32) {
-                VarKind::Joint(j) => q[*j],
-                VarKind::Param(n) => chain.param_value(n),
-                VarKind::Sqrt(k) => (*k as f64).sqrt(),
-                VarKind::Sin(_) | VarKind::Cos(_) => continue,
-            };
-        }
-        for a in &self.sym.angles {
-            let x = match &a.source {
-                AngleSource::Joint {
-                    joint,
-                    sign,
-                    offset,
-                } => f64::from(*sign) * q[*joint] + chain.eval(offset),
-                AngleSource::Constant(v) => chain.eval(v),
-            };
-            vals[a.vars.0 as usize] = x.sin();
-            vals[a.vars.1 as usize] = x.cos();
-        }
-        vals
+        self.sym.variables(chain, q)
     }
 
     /// Evaluate nodes at `q`.
     pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
-        let vals = self.variables(chain, q);
-        ids.iter()
-            .map(|&id| self.sym.graph.eval(id, &|v| vals[v as usize]))
-            .collect()
+        self.sym.eval(chain, q, ids)
     }
 }

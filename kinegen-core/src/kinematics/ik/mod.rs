@@ -38,3 +38,37 @@ pub fn model(chain: &Chain, max_terms: usize) -> Result<IkModel, String> {
     ids.extend(zero.tool.p);
     Ok(IkModel { plan, zero, ids })
 }
+
+/// The zero-configuration geometry as numbers, with the chain's parameter values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeometryValues {
+    /// Unit joint axes.
+    pub h: Vec<[f64; 3]>,
+    /// A point on each axis.
+    pub p: Vec<[f64; 3]>,
+    /// Which joints are prismatic.
+    pub prismatic: Vec<bool>,
+    /// Tool rotation at `q = 0`, row-major.
+    pub r_tool: [[f64; 3]; 3],
+    /// Tool position at `q = 0`.
+    pub p_tool: [f64; 3],
+}
+
+impl IkModel {
+    /// The geometry's numeric values (what the generated `ik_geometry` returns).
+    pub fn values(&self, chain: &Chain) -> GeometryValues {
+        let n = chain.dof();
+        let v = self.zero.eval(chain, &vec![0.0; n], &self.ids);
+        let v3 = |k: usize| [v[k], v[k + 1], v[k + 2]];
+        GeometryValues {
+            h: (0..n).map(|i| v3(6 * i)).collect(),
+            p: (0..n).map(|i| v3(6 * i + 3)).collect(),
+            prismatic: chain
+                .kinds()
+                .map(|k| k == crate::model::robot::JointKind::Prismatic)
+                .collect(),
+            r_tool: [v3(6 * n), v3(6 * n + 3), v3(6 * n + 6)],
+            p_tool: v3(6 * n + 9),
+        }
+    }
+}
