@@ -75,6 +75,10 @@ kinegen::kinematics! {
     pub struct Scara = "scara.toml";
 }
 kinegen::kinematics! {
+    /// Kinova Jaco (6 joints, 60° wrist; joint 1 flipped, as in RTB's model).
+    pub struct KinovaJaco = "kinova_jaco.toml";
+}
+kinegen::kinematics! {
     /// Cylindrical RPP arm.
     pub struct CylindricalRpp = "cylindrical_rpp.toml";
 }

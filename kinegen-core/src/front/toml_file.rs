@@ -21,6 +21,7 @@
 //! alpha = 0
 //! d = 0
 //! limits = ["-pi", "pi"]
+//! flip = true                      # optional: θ = −q + θ₀ (the joint runs against z)
 //! [tool]                           # optional, likewise [base]
 //! xyz = [0, 0, 0.1]
 //! rpy = [0, 0, "pi/2"]
@@ -37,7 +38,7 @@
 //! assert_eq!(
 //!     err.to_string(),
 //!     "r.toml:3: joints[0]: missing column `alpha`\n\
-//!      r.toml:6: joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset or limits"
+//!      r.toml:6: joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset, limits or flip"
 //! );
 //! ```
 
@@ -250,7 +251,7 @@ enum Node {
     Str(String),
     Int(i64),
     Float(f64),
-    Bool,
+    Bool(bool),
     Datetime,
     Array(Vec<Spanned<Node>>),
     Table(Vec<(String, Spanned<Node>)>),
@@ -261,7 +262,7 @@ impl Node {
         match self {
             Node::Str(_) => "a string",
             Node::Int(_) | Node::Float(_) => "a number",
-            Node::Bool => "a boolean",
+            Node::Bool(_) => "a boolean",
             Node::Datetime => "a date",
             Node::Array(_) => "a list",
             Node::Table(_) => "a table",
@@ -288,8 +289,8 @@ impl<'de> Visitor<'de> for NodeVisitor {
         f.write_str("a TOML value")
     }
 
-    fn visit_bool<E: de::Error>(self, _: bool) -> Result<Node, E> {
-        Ok(Node::Bool)
+    fn visit_bool<E: de::Error>(self, v: bool) -> Result<Node, E> {
+        Ok(Node::Bool(v))
     }
 
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<Node, E> {
@@ -488,6 +489,9 @@ impl Reader<'_> {
                 if key == "type" {
                     self.mark(&kp, value);
                     joint.kind = self.string(value, &kp);
+                } else if let (Node::Bool(b), "flip") = (value.get_ref(), key.as_str()) {
+                    self.mark(&kp, value);
+                    joint.fields.push((key.clone(), RawValue::Bool(*b)));
                 } else if let Some(v) = self.value(value, &kp) {
                     joint.fields.push((key.clone(), v));
                 }

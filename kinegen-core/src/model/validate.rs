@@ -10,6 +10,9 @@ use crate::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
 use crate::model::robot::{JointKind, Param, Scalar, TaskRow};
 use crate::model::value::{parse_value, Value};
 
+/// The columns of a joint row.
+const COLUMNS: &[&str] = &["a", "alpha", "d", "theta", "offset", "limits", "flip"];
+
 /// Identifiers that cannot be parameter names.
 const RESERVED: &[&str] = &["pi", "PI", "q", "self", "Self", "crate", "super"];
 
@@ -224,6 +227,10 @@ impl Validator {
                 self.err(path.clone(), "expected a single value, found a list");
                 None
             }
+            RawValue::Bool(b) => {
+                self.err(path.clone(), format!("expected a number, found `{b}`"));
+                None
+            }
         }
     }
 
@@ -274,11 +281,11 @@ impl Validator {
         let mut seen: BTreeMap<&str, &RawValue> = BTreeMap::new();
         for (key, value) in &raw.fields {
             let p = path.key(key);
-            if !["a", "alpha", "d", "theta", "offset", "limits"].contains(&key.as_str()) {
+            if !COLUMNS.contains(&key.as_str()) {
                 self.err(
                     p,
                     format!(
-                        "unknown column `{key}`: expected a, alpha, d, theta, offset or limits"
+                        "unknown column `{key}`: expected a, alpha, d, theta, offset, limits or flip"
                     ),
                 );
             } else if seen.insert(key.as_str(), value).is_some() {
@@ -310,6 +317,10 @@ impl Validator {
             JointKind::Prismatic => Quantity::Length,
         };
         let offset = get(self, "offset", offset_q);
+        let flip = match seen.get("flip") {
+            Some(raw) => self.flag(raw, &path.key("flip")),
+            None => false,
+        };
         match kind {
             JointKind::Revolute => theta = theta.add(&offset),
             JointKind::Prismatic => d = d.add(&offset),
@@ -321,6 +332,20 @@ impl Validator {
             d,
             theta,
             limits: None,
+            flip,
+        }
+    }
+
+    /// `true` or `false` (also written as text, as the macro passes it).
+    fn flag(&mut self, raw: &RawValue, path: &Path) -> bool {
+        match raw {
+            RawValue::Bool(b) => *b,
+            RawValue::Text(t) if t.trim() == "true" => true,
+            RawValue::Text(t) if t.trim() == "false" => false,
+            _ => {
+                self.err(path.clone(), "`flip` is `true` or `false`");
+                false
+            }
         }
     }
 
@@ -480,7 +505,7 @@ mod tests {
         assert_eq!(
             got,
             vec![
-                "joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset or limits",
+                "joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset, limits or flip",
                 "joints[1].a: undefined parameter `L3`",
                 "task[1]: task row `x` given twice",
             ]

@@ -1,3 +1,4 @@
+#![allow(dead_code)]
 //! Shared by the tests that go over every robot table (also `#[path]`-included by
 //! kinegen-cli's determinism test).
 
