@@ -37,6 +37,7 @@ impl Robot {
             }
             .into(),
             summary: summary(self),
+            snaps: Vec::new(),
         }
     }
 }

@@ -50,60 +50,12 @@ use std::path::Path as FsPath;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
+pub use crate::front::located::{LoadError, LocatedError};
 use crate::model::dh::Robot;
 use crate::model::input;
 use crate::model::options::{Budget, Options};
 use crate::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
 use crate::model::validate::validate;
-
-/// An error at a line of a file: renders as `file:LINE: path: message`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LocatedError {
-    /// The file as the user named it.
-    pub file: String,
-    /// 1-based line; 0 when the file could not be read at all.
-    pub line: usize,
-    /// Where in the model (the root for whole-file problems).
-    pub path: Path,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for LocatedError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        // Line 0: the problem is with the file as a whole (it cannot be read).
-        if self.line == 0 {
-            write!(f, "{}: ", self.file)?;
-        } else {
-            write!(f, "{}:{}: ", self.file, self.line)?;
-        }
-        if !self.path.0.is_empty() {
-            write!(f, "{}: ", self.path)?;
-        }
-        f.write_str(&self.message)
-    }
-}
-
-/// Why a file did not load: every problem found, one per line when displayed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LoadError {
-    /// The problems, in file order where the parser allows.
-    pub errors: Vec<LocatedError>,
-}
-
-impl fmt::Display for LoadError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, e) in self.errors.iter().enumerate() {
-            if i > 0 {
-                f.write_str("\n")?;
-            }
-            write!(f, "{e}")?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for LoadError {}
 
 /// Load and check a robot from TOML text. `file_label` names the file in messages.
 pub fn load_str(src: &str, file_label: &str) -> Result<(Robot, Options), LoadError> {

@@ -52,6 +52,34 @@ pub fn is_identifier(s: &str) -> bool {
         && s != "_"
 }
 
+/// Why `name` cannot name a parameter (a struct field of the generated type), if it
+/// cannot: not an identifier, `pi`/`q`, a joint variable, a Rust keyword, or a name the
+/// generated code binds itself.
+pub fn param_name_problem(name: &str) -> Option<String> {
+    if !is_identifier(name) || RESERVED.contains(&name) {
+        return Some(format!(
+            "`{name}` cannot name a parameter: use an identifier other than `pi` or `q`"
+        ));
+    }
+    if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit()) {
+        return Some(format!(
+            "`{name}` is the name of a joint variable; choose another parameter name"
+        ));
+    }
+    if is_rust_keyword(name) {
+        return Some(format!(
+            "`{name}` is a Rust keyword; choose another parameter name"
+        ));
+    }
+    if is_generated_local(name) {
+        return Some(format!(
+            "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23`/`nc23` angle \
+             sums, `t4` intermediates); choose another parameter name"
+        ));
+    }
+    None
+}
+
 /// Check a raw robot. Returns every problem found, in input order.
 pub fn validate(raw: &RawRobot) -> Result<Robot, Vec<DhError>> {
     let mut v = Validator {
@@ -152,37 +180,8 @@ impl Validator {
         let mut out = Vec::new();
         for (name, value) in raw {
             let p = path.key(name);
-            if !is_identifier(name) || RESERVED.contains(&name.as_str()) {
-                self.err(
-                    p.clone(),
-                    format!("`{name}` cannot name a parameter: use an identifier other than `pi` or `q`"),
-                );
-                continue;
-            }
-            if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit()) {
-                self.err(
-                    p.clone(),
-                    format!(
-                        "`{name}` is the name of a joint variable; choose another parameter name"
-                    ),
-                );
-                continue;
-            }
-            if is_rust_keyword(name) {
-                self.err(
-                    p.clone(),
-                    format!("`{name}` is a Rust keyword; choose another parameter name"),
-                );
-                continue;
-            }
-            if is_generated_local(name) {
-                self.err(
-                    p.clone(),
-                    format!(
-                        "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23`/`nc23` angle \
-                         sums, `t4` intermediates); choose another parameter name"
-                    ),
-                );
+            if let Some(problem) = param_name_problem(name) {
+                self.err(p.clone(), problem);
                 continue;
             }
             if !self.params.insert(name.clone()) {
