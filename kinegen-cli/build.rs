@@ -1,4 +1,4 @@
-//! Embeds the robots of `robots/*.toml` into the binary, so `kinegen show ur5` works from
+//! Embeds the robots of `robots/*.toml` (and the URDFs of `robots/urdf/` they may name) into the binary, so `kinegen show ur5` works from
 //! any directory: writes `$OUT_DIR/robots.rs` with one `(name, label, source)` per file.
 
 use std::fmt::Write;
@@ -31,6 +31,34 @@ fn main() {
             out,
             "    ({stem:?}, {:?}, include_str!({:?})),",
             format!("robots/{stem}.toml"),
+            path.display().to_string()
+        );
+    }
+    out.push_str("];\n");
+    // The URDFs those robots may name (`urdf = "urdf/ur5.urdf"`).
+    let urdf_dir = dir.join("urdf");
+    println!("cargo:rerun-if-changed={}", urdf_dir.display());
+    let mut urdfs: Vec<PathBuf> = std::fs::read_dir(&urdf_dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "urdf"))
+                .collect()
+        })
+        .unwrap_or_default();
+    urdfs.sort();
+    out.push_str("/// URDFs of `robots/urdf/`: `(path relative to robots/, label, source)`.\npub const URDFS: &[(&str, &str, &str)] = &[\n");
+    for f in &urdfs {
+        let name = f
+            .file_name()
+            .and_then(|s| s.to_str())
+            .expect("UTF-8 file name");
+        let path = f.canonicalize().expect("file exists");
+        println!("cargo:rerun-if-changed={}", path.display());
+        let _ = writeln!(
+            out,
+            "    ({:?}, {:?}, include_str!({:?})),",
+            format!("urdf/{name}"),
+            format!("robots/urdf/{name}"),
             path.display().to_string()
         );
     }

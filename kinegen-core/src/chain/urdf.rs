@@ -35,7 +35,7 @@ use crate::front::urdf::{Joint, JointType, Number, Urdf};
 use crate::model::raw::Path;
 use crate::model::robot::{JointKind, Param, Scalar};
 use crate::model::validate::param_name_problem;
-use crate::model::value::{Rat, Value};
+use crate::model::value::{parse_decimal, rat_to_f64, Rat, Value};
 
 /// The default snap tolerance: radians for angles, metres for lengths.
 pub const DEFAULT_SNAP: f64 = 1e-4;
@@ -317,7 +317,8 @@ impl Builder {
             return Value::zero();
         }
         match snap_to_twelfths(n.to_f64(), self.tol) {
-            Some((t, delta)) => {
+            Some((t, _)) => {
+                let delta = distance_to_pi_multiple(&n.value, &t);
                 let v = Value::pi_times(t);
                 self.record(
                     k,
@@ -440,6 +441,14 @@ fn snap_to_twelfths(x: f64, tol: f64) -> Option<(Rat, f64)> {
     let k = (x / (PI / 12.0)).round();
     let delta = (x - k * PI / 12.0).abs();
     (delta <= tol && k.abs() < 1e6).then(|| (Rat::new((k as i64).into(), 12.into()), delta))
+}
+
+/// `|x − t·π|` from the exact decimal `x` (not its double: `3.141592653589793` is
+/// 1.2e-16 from π although it is the double nearest π).
+fn distance_to_pi_multiple(x: &Rat, t: &Rat) -> f64 {
+    let pi = parse_decimal("3.14159265358979323846264338327950288419716939937510582097494")
+        .unwrap_or_default();
+    rat_to_f64(&(x - t * pi).abs())
 }
 
 fn r(n: i64, d: i64) -> Rat {

@@ -6,8 +6,11 @@
 //!   URDF and the options for it.
 //! - [`urdf`]: a URDF file: its links and joints, the tree, the path from a base link
 //!   to a tip link.
+//! - [`urdf_robot`]: a URDF with a description's options (base, tip, snap, named
+//!   lengths) as the engine's chain.
 //! - [`located`]: the errors both report, `file:line: message`.
 
 pub mod located;
 pub mod toml_file;
 pub mod urdf;
+pub mod urdf_robot;

@@ -50,7 +50,10 @@ use std::path::Path as FsPath;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
+use crate::chain::Chain;
 pub use crate::front::located::{LoadError, LocatedError};
+use crate::front::urdf::Urdf;
+use crate::front::urdf_robot::{self, Problem, UrdfOptions, URDF_KEYS};
 use crate::model::dh::Robot;
 use crate::model::input;
 use crate::model::options::{Budget, Options};
@@ -60,6 +63,14 @@ use crate::model::validate::validate;
 /// Load and check a robot from TOML text. `file_label` names the file in messages.
 pub fn load_str(src: &str, file_label: &str) -> Result<(Robot, Options), LoadError> {
     let file = RawFile::parse(src, file_label)?;
+    if file.urdf.is_some() {
+        return Err(LoadError::at(
+            file_label,
+            file.line_of(&Path::root().key("urdf")),
+            Path::root().key("urdf"),
+            "this file names a URDF, not a DH table: load it with `load_description_file`",
+        ));
+    }
     let checks = match validate(&file.robot) {
         Ok(robot) if file.shape_errors.is_empty() => {
             let options = Options {
@@ -93,6 +104,87 @@ pub fn load_file(path: &FsPath) -> Result<(Robot, Options), LoadError> {
     }
 }
 
+/// What a robot file describes: a DH table, or a chain of a URDF.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Description {
+    /// A DH table (`[[joints]]`).
+    Dh(Box<Robot>),
+    /// A chain of the URDF the file names (`urdf = "…"`).
+    Urdf(Box<Chain>),
+}
+
+impl Description {
+    /// The engine's input.
+    pub fn chain(&self) -> Chain {
+        match self {
+            Description::Dh(r) => r.chain(),
+            Description::Urdf(c) => (**c).clone(),
+        }
+    }
+}
+
+/// Load a robot file of either kind; a URDF it names is read relative to its directory.
+pub fn load_description_file(path: &FsPath) -> Result<(Description, Options), LoadError> {
+    let label = path.display().to_string();
+    let src = std::fs::read_to_string(path).map_err(|e| {
+        LoadError::at(
+            &label,
+            0,
+            Path::root(),
+            format!("cannot read the file: {e}"),
+        )
+    })?;
+    let dir = path.parent().unwrap_or(FsPath::new("")).to_path_buf();
+    let read = |rel: &str| {
+        let p = dir.join(rel);
+        std::fs::read_to_string(&p)
+            .map(|s| (p.display().to_string(), s))
+            .map_err(|e| format!("cannot read `{}`: {e}", p.display()))
+    };
+    load_description_str(&src, &label, &read)
+}
+
+/// The text a URDF file holds, and its label for messages, by the path a robot file
+/// gives (`read("urdf/ur5.urdf")`).
+pub type ReadUrdf<'a> = &'a dyn Fn(&str) -> Result<(String, String), String>;
+
+/// Load a robot file of either kind from text; `read` gives the URDF it names.
+pub fn load_description_str(
+    src: &str,
+    file_label: &str,
+    read: ReadUrdf,
+) -> Result<(Description, Options), LoadError> {
+    let file = RawFile::parse(src, file_label)?;
+    let Some((rel, options)) = &file.urdf else {
+        return load_str(src, file_label).map(|(r, o)| (Description::Dh(Box::new(r)), o));
+    };
+    if !file.shape_errors.is_empty() {
+        return Err(file.locate_all(file.shape_errors.clone()));
+    }
+    let at_key = |message: String| {
+        file.locate_all(vec![DhError {
+            path: Path::root().key("urdf"),
+            message,
+        }])
+    };
+    let (label, text) = read(rel).map_err(at_key)?;
+    let urdf = Urdf::parse(&text, &label)?;
+    let chain = urdf_robot::chain(&urdf, options).map_err(|problems| LoadError {
+        errors: problems
+            .into_iter()
+            .map(|p| match p {
+                Problem::Option(e) => file.locate(e),
+                Problem::File(e) => e,
+            })
+            .collect(),
+    })?;
+    let options = Options {
+        budget: file.budget.unwrap_or_default(),
+        ..Options::default()
+    };
+    Ok((Description::Urdf(Box::new(chain)), options))
+}
+
 /// A TOML robot before validation, with the line of every entry.
 ///
 /// Front ends that merge a file with other input (the macro's file form with overrides)
@@ -106,6 +198,9 @@ pub struct RawFile {
     pub budget: Option<Budget>,
     /// Top-level keys present in the file.
     pub keys: Vec<String>,
+    /// `urdf = "…"` and the options for it, when the file names a URDF instead of a DH
+    /// table (then [`RawFile::robot`] is empty).
+    pub urdf: Option<(String, UrdfOptions)>,
     /// Entries of the wrong kind (a string where a table belongs, unknown keys, …),
     /// to be reported with [`crate::model::validate::validate`]'s errors through
     /// [`input::combine_errors`].
@@ -127,6 +222,7 @@ impl RawFile {
             robot: RawRobot::default(),
             budget: None,
             keys: Vec::new(),
+            urdf: None,
             shape_errors: Vec::new(),
             label: file_label.to_string(),
             line_starts,
@@ -157,7 +253,13 @@ impl RawFile {
             spans: &mut file.spans,
             errors: Vec::new(),
         };
-        reader.root(&root, &mut file.robot, &mut file.budget, &mut file.keys);
+        let names_urdf =
+            matches!(root.get_ref(), Node::Table(e) if e.iter().any(|(k, _)| k == "urdf"));
+        if names_urdf {
+            file.urdf = reader.urdf_root(&root, &mut file.budget, &mut file.keys);
+        } else {
+            reader.root(&root, &mut file.robot, &mut file.budget, &mut file.keys);
+        }
         file.shape_errors = reader.errors;
         Ok(file)
     }
@@ -353,6 +455,67 @@ impl Reader<'_> {
                 _ => self.err(p, input::unknown_top_level_key(key)),
             }
         }
+    }
+
+    /// A file that names a URDF: `urdf`, `base`, `tip`, `snap`, named lengths and the
+    /// shared options.
+    fn urdf_root(
+        &mut self,
+        node: &Spanned<Node>,
+        budget: &mut Option<Budget>,
+        keys: &mut Vec<String>,
+    ) -> Option<(String, UrdfOptions)> {
+        let Node::Table(entries) = node.get_ref() else {
+            return None;
+        };
+        let mut o = UrdfOptions::default();
+        let mut file = None;
+        for (key, value) in entries {
+            let p = Path::root().key(key);
+            self.mark(&p, value);
+            keys.push(key.clone());
+            match key.as_str() {
+                "urdf" => file = self.string(value, &p),
+                "name" => o.name = self.string(value, &p),
+                "base" => o.base = self.string(value, &p),
+                "tip" => o.tip = self.string(value, &p),
+                "scalar" => o.scalar = self.string(value, &p),
+                "snap" => match value.get_ref() {
+                    Node::Float(x) => o.snap = Some(*x),
+                    Node::Int(i) => o.snap = Some(*i as f64),
+                    other => self.err(
+                        p,
+                        format!(
+                            "`snap` is a tolerance in radians / metres, found {}",
+                            other.kind()
+                        ),
+                    ),
+                },
+                "params" => o.params = self.entries(value, &p).unwrap_or_default(),
+                "task" => {
+                    o.task = self.value(value, &p).map(|v| match v {
+                        RawValue::List(items) => items,
+                        other => vec![other],
+                    })
+                }
+                "budget" => *budget = self.budget(value, &p),
+                "convention" | "joints" | "tool" => self.err(
+                    p,
+                    format!(
+                        "`{key}` belongs to a DH table; a file with `urdf` takes {}",
+                        URDF_KEYS.join(", ")
+                    ),
+                ),
+                _ => self.err(
+                    p,
+                    format!(
+                        "unknown key `{key}`: a file with `urdf` takes {}",
+                        URDF_KEYS.join(", ")
+                    ),
+                ),
+            }
+        }
+        file.map(|f| (f, o))
     }
 
     fn string(&mut self, node: &Spanned<Node>, path: &Path) -> Option<String> {

@@ -80,6 +80,23 @@ pub fn param_name_problem(name: &str) -> Option<String> {
     None
 }
 
+/// Check the options every description shares, `task` and `scalar`, of a robot that
+/// has no DH table (a URDF): the rows and the scalar type, or every problem.
+pub fn task_and_scalar(raw: &RawRobot) -> Result<(Option<Vec<TaskRow>>, Scalar), Vec<DhError>> {
+    let mut v = Validator {
+        errors: Vec::new(),
+        params: BTreeSet::new(),
+    };
+    let root = Path::root();
+    let scalar = v.scalar(raw.scalar.as_deref(), &root);
+    let task = raw.task.as_ref().map(|t| v.task(t, &root.key("task")));
+    if v.errors.is_empty() {
+        Ok((task, scalar))
+    } else {
+        Err(v.errors)
+    }
+}
+
 /// Check a raw robot. Returns every problem found, in input order.
 pub fn validate(raw: &RawRobot) -> Result<Robot, Vec<DhError>> {
     let mut v = Validator {
@@ -136,17 +153,7 @@ impl Validator {
                 Convention::Standard
             }
         };
-        let scalar = match raw.scalar.as_deref() {
-            None | Some("f64") => Scalar::F64,
-            Some("f32") => Scalar::F32,
-            Some(other) => {
-                self.err(
-                    root.key("scalar"),
-                    format!("unknown scalar type `{other}`: expected `f64` or `f32`"),
-                );
-                Scalar::F64
-            }
-        };
+        let scalar = self.scalar(raw.scalar.as_deref(), root);
         let params = self.params(&raw.params, &root.key("params"));
         if raw.joints.is_empty() {
             self.err(root.key("joints"), "the DH table has no joints");
@@ -174,6 +181,20 @@ impl Validator {
             self.limits(raw, &mut robot, root);
         }
         robot
+    }
+
+    fn scalar(&mut self, raw: Option<&str>, root: &Path) -> Scalar {
+        match raw {
+            None | Some("f64") => Scalar::F64,
+            Some("f32") => Scalar::F32,
+            Some(other) => {
+                self.err(
+                    root.key("scalar"),
+                    format!("unknown scalar type `{other}`: expected `f64` or `f32`"),
+                );
+                Scalar::F64
+            }
+        }
     }
 
     fn params(&mut self, raw: &[(String, RawValue)], path: &Path) -> Vec<Param> {
