@@ -532,26 +532,27 @@ fn joint(el: Node, errors: &mut Errors, line: &dyn Fn(Node) -> usize) -> Option<
     let child_link = link_of("child");
     let origin = child(el, "origin");
     let origin_line = origin.map_or(at, line);
-    let mut vector = |node: Option<Node>, attr: &str, default: [i64; 3]| -> [Number; 3] {
+    let mut vector = |node: Option<Node>, attr: &str, key: &str, default: [i64; 3]| -> [Number; 3] {
         let line = node.map_or(at, line);
         match node.and_then(|n| n.attribute(attr)) {
-            Some(text) => numbers(text, line, &path.key(attr), errors),
+            Some(text) => numbers(text, line, &path.key(key), errors),
             None => default.map(|d| Number {
                 value: Rat::from_integer(d.into()),
                 text: d.to_string(),
             }),
         }
     };
-    let xyz = vector(origin, "xyz", [0, 0, 0]);
-    let rpy = vector(origin, "rpy", [0, 0, 0]);
+    let xyz = vector(origin, "xyz", "xyz", [0, 0, 0]);
+    let rpy = vector(origin, "rpy", "rpy", [0, 0, 0]);
     let axis_el = child(el, "axis");
-    let axis = vector(axis_el, "xyz", [1, 0, 0]);
+    let axis = vector(axis_el, "xyz", "axis", [1, 0, 0]);
     let axis_line = axis_el.map_or(at, line);
     let moving = matches!(
         kind,
         Some(JointType::Revolute | JointType::Continuous | JointType::Prismatic)
     );
-    if moving && axis.iter().all(|n| n.value == Rat::from_integer(0.into())) {
+    let zero = axis.iter().all(|n| n.value == Rat::from_integer(0.into()));
+    if moving && zero && errors.list.len() == before {
         errors.at(
             axis_line,
             path.key("axis"),
@@ -592,12 +593,7 @@ fn numbers(text: &str, line: usize, path: &Path, errors: &mut Errors) -> [Number
         errors.at(
             line,
             path.clone(),
-            format!(
-                "`{}` needs 3 numbers, found {}: `{}`",
-                path_tail(path),
-                words.len(),
-                text.trim()
-            ),
+            format!("needs 3 numbers, found {}: `{}`", words.len(), text.trim()),
         );
         return out;
     }
@@ -613,14 +609,6 @@ fn numbers(text: &str, line: usize, path: &Path, errors: &mut Errors) -> [Number
         }
     }
     out
-}
-
-/// The last key of a path (`xyz`).
-fn path_tail(path: &Path) -> String {
-    match path.0.last() {
-        Some(crate::model::raw::PathSeg::Key(k)) => k.clone(),
-        _ => path.to_string(),
-    }
 }
 
 /// `<limit lower upper>`: both default to 0 as in the specification.
