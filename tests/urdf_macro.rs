@@ -15,5 +15,8 @@ fn the_urdf_form_generates_a_robot() {
     // 1.5708 is snapped to π/2: the tool sits 0.2 m along the turned x axis, so at
     // q = 0 it is below the shoulder by exactly 0.2 (x of the tool = 0).
     let t = arm.fk(&[0.0]);
-    assert!(t[0][3].abs() < 1e-6 && (t[2][3] - (0.1 - 0.2)).abs() < 1e-6, "{t:?}");
+    assert!(
+        t[0][3].abs() < 1e-6 && (t[2][3] - (0.1 - 0.2)).abs() < 1e-6,
+        "{t:?}"
+    );
 }

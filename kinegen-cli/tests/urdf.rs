@@ -66,7 +66,10 @@ fn every_command_takes_a_urdf() {
     let keys = |v: &Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
     assert_eq!(keys(&from_urdf), keys(&from_dh));
     let shipped = json(&["eval", "ur5_urdf"]);
-    let (a, b) = (shipped["det"].as_f64().unwrap(), from_dh["det"].as_f64().unwrap());
+    let (a, b) = (
+        shipped["det"].as_f64().unwrap(),
+        from_dh["det"].as_f64().unwrap(),
+    );
     assert!((a - b).abs() < 1e-12, "{a} vs {b}");
 }
 
@@ -79,13 +82,27 @@ fn show_model_lists_the_chain_and_every_snap() {
         model.contains("`shoulder_lift_joint.origin.roll`: `1.570796327` → `pi/2` (δ = 2.1e-10)"),
         "{model}"
     );
-    assert!(model.contains("together (first order): tool position within"), "{model}");
+    assert!(
+        model.contains("together (first order): tool position within"),
+        "{model}"
+    );
     // --snap 0: every decimal as written, nothing snapped.
     let literal = stdout(&[
         "show", &ur5, "--tip", "tool0", "--snap", "0", "--what", "model",
     ]);
-    assert!(literal.contains("link 2: Rx(1.570796327) Rz(q2)"), "{literal}");
-    assert!(literal.contains("none: the chain is the description as written"), "{literal}");
+    assert!(
+        literal.contains("link 2: Rx(1.570796327) Rz(q2)"),
+        "{literal}"
+    );
+    assert!(
+        literal.contains("none: the chain is the description as written"),
+        "{literal}"
+    );
+    insta::assert_snapshot!(
+        "show_model_kinova_urdf",
+        stdout(&["show", &urdf("kinova_j2s6s.urdf"), "--what", "model"])
+            .replace(&urdf(""), "robots/urdf/")
+    );
     // A DH robot has no snaps.
     assert!(stdout(&["show", "ur5", "--what", "model"]).contains("none:"));
 }
@@ -99,24 +116,42 @@ fn several_leaves_and_unknown_links_exit_2_with_the_line() {
         "{e}"
     );
     let e = fails(&["eval", &ur5, "--tip", "tool1", "--q", "0,0,0,0,0,0"]);
-    assert!(e.contains("ur5.urdf:10: --tip: no link `tool1` (the tip)"), "{e}");
+    assert!(
+        e.contains("ur5.urdf:10: --tip: no link `tool1` (the tip)"),
+        "{e}"
+    );
     let e = fails(&["stats", &ur5, "--base", "tool0", "--tip", "base_link"]);
-    assert!(e.contains("--tip: tip link `base_link` is not below base link `tool0`"), "{e}");
+    assert!(
+        e.contains("--tip: tip link `base_link` is not below base link `tool0`"),
+        "{e}"
+    );
     let e = fails(&["show", "ur5", "--tip", "tool0"]);
-    assert!(e.contains("--base, --tip and --snap select the chain of a .urdf file"), "{e}");
+    assert!(
+        e.contains("--base, --tip and --snap select the chain of a .urdf file"),
+        "{e}"
+    );
 }
 
 #[test]
 fn bad_files_exit_2_with_the_line() {
     let e = fails(&["show", "/nonexistent/arm.urdf"]);
-    assert!(e.contains("/nonexistent/arm.urdf: cannot read the file"), "{e}");
+    assert!(
+        e.contains("/nonexistent/arm.urdf: cannot read the file"),
+        "{e}"
+    );
     let xacro = temp_urdf(
         "arm.urdf",
         "<robot name=\"r\">\n<xacro:include filename=\"x.xacro\"/>\n</robot>\n",
     );
     let e = fails(&["rust", &xacro]);
-    assert!(e.contains("arm.urdf:2: this is an unexpanded xacro file: run `xacro"), "{e}");
-    let not_xml = temp_urdf("broken.urdf", "<robot name=\"r\">\n<link name=\"a\">\n</robot>\n");
+    assert!(
+        e.contains("arm.urdf:2: this is an unexpanded xacro file: run `xacro"),
+        "{e}"
+    );
+    let not_xml = temp_urdf(
+        "broken.urdf",
+        "<robot name=\"r\">\n<link name=\"a\">\n</robot>\n",
+    );
     let e = fails(&["show", &not_xml]);
     assert!(e.contains("broken.urdf:3: not an XML file"), "{e}");
     let floating = temp_urdf(
@@ -125,5 +160,8 @@ fn bad_files_exit_2_with_the_line() {
          <joint name=\"free\" type=\"floating\"><parent link=\"a\"/><child link=\"b\"/></joint>\n</robot>\n",
     );
     let e = fails(&["show", &floating]);
-    assert!(e.contains("floating.urdf:2: free: joint `free` on the chain `a` → `b` is floating"), "{e}");
+    assert!(
+        e.contains("floating.urdf:2: free: joint `free` on the chain `a` → `b` is floating"),
+        "{e}"
+    );
 }

@@ -172,9 +172,14 @@ fn not_a_tree() {
         "<joint name=\"back\" type=\"fixed\"><parent link=\"b\"/><child link=\"base\"/></joint>\n</robot>",
     );
     let e = parse_err(&src);
-    assert!(e.contains("is on a cycle: the links do not form a tree"), "{e}");
+    assert!(
+        e.contains("is on a cycle: the links do not form a tree"),
+        "{e}"
+    );
     // An unknown link.
-    let e = parse_err(&arm(&JOINT2.replace("<child link=\"b\"/>", "<child link=\"c\"/>")));
+    let e = parse_err(&arm(
+        &JOINT2.replace("<child link=\"b\"/>", "<child link=\"c\"/>")
+    ));
     assert!(e.contains("joint2: child link `c` is not declared"), "{e}");
 }
 
@@ -198,7 +203,16 @@ fn bad_options() {
         ..Selection::default()
     };
     let e = urdf.chain(&sel).unwrap_err().to_string();
-    assert!(e.contains("params.s1: `s1` is a name the generated code uses"), "{e}");
-    assert!(e.contains("params.d: no joint `joint9` on the chain"), "{e}");
-    assert!(e.contains("params.e: `joint1.axis.z` is not a length of the file"), "{e}");
+    assert!(
+        e.contains("params.s1: `s1` is a name the generated code uses"),
+        "{e}"
+    );
+    assert!(
+        e.contains("params.d: no joint `joint9` on the chain"),
+        "{e}"
+    );
+    assert!(
+        e.contains("params.e: `joint1.axis.z` is not a length of the file"),
+        "{e}"
+    );
 }

@@ -87,13 +87,7 @@ kinegen::kinematics! {
 kinegen::kinematics! {
     /// Franka Emika Panda from its URDF, `panda_link0` → `panda_hand_tcp` (the fingers,
     /// one mimicking the other, are off the chain).
-    pub struct PandaUrdf = urdf("urdf/panda.urdf", base = "panda_link0", tip = "panda_hand_tcp");
-    params: {
-        d1: "panda_joint1.origin.z",
-        a4: "panda_joint4.origin.x",
-        a5: "panda_joint5.origin.x",
-        a7: "panda_joint7.origin.x",
-    },
+    pub struct PandaUrdf = "panda_urdf.toml";
 }
 kinegen::kinematics! {
     /// Cylindrical RPP arm.

@@ -532,16 +532,17 @@ fn joint(el: Node, errors: &mut Errors, line: &dyn Fn(Node) -> usize) -> Option<
     let child_link = link_of("child");
     let origin = child(el, "origin");
     let origin_line = origin.map_or(at, line);
-    let mut vector = |node: Option<Node>, attr: &str, key: &str, default: [i64; 3]| -> [Number; 3] {
-        let line = node.map_or(at, line);
-        match node.and_then(|n| n.attribute(attr)) {
-            Some(text) => numbers(text, line, &path.key(key), errors),
-            None => default.map(|d| Number {
-                value: Rat::from_integer(d.into()),
-                text: d.to_string(),
-            }),
-        }
-    };
+    let mut vector =
+        |node: Option<Node>, attr: &str, key: &str, default: [i64; 3]| -> [Number; 3] {
+            let line = node.map_or(at, line);
+            match node.and_then(|n| n.attribute(attr)) {
+                Some(text) => numbers(text, line, &path.key(key), errors),
+                None => default.map(|d| Number {
+                    value: Rat::from_integer(d.into()),
+                    text: d.to_string(),
+                }),
+            }
+        };
     let xyz = vector(origin, "xyz", "xyz", [0, 0, 0]);
     let rpy = vector(origin, "rpy", "rpy", [0, 0, 0]);
     let axis_el = child(el, "axis");
