@@ -8,17 +8,7 @@ fn main() {
     let dir = PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo"))
         .join("..")
         .join("robots");
-    println!("cargo:rerun-if-changed={}", dir.display());
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .map(|rd| {
-            rd.filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| {
-                    p.extension().is_some_and(|x| x == "toml") && !p.ends_with("Cargo.toml")
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    files.sort();
+    let files = files_of(&dir, "toml");
     let mut out = String::from("/// Robots of `robots/`: `(name, label, TOML source)`, sorted by name.\npub const ROBOTS: &[(&str, &str, &str)] = &[\n");
     for f in &files {
         let stem = f
@@ -36,16 +26,7 @@ fn main() {
     }
     out.push_str("];\n");
     // The URDFs those robots may name (`urdf = "urdf/ur5.urdf"`).
-    let urdf_dir = dir.join("urdf");
-    println!("cargo:rerun-if-changed={}", urdf_dir.display());
-    let mut urdfs: Vec<PathBuf> = std::fs::read_dir(&urdf_dir)
-        .map(|rd| {
-            rd.filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "urdf"))
-                .collect()
-        })
-        .unwrap_or_default();
-    urdfs.sort();
+    let urdfs = files_of(&dir.join("urdf"), "urdf");
     out.push_str("/// URDFs of `robots/urdf/`: `(path relative to robots/, label, source)`.\npub const URDFS: &[(&str, &str, &str)] = &[\n");
     for f in &urdfs {
         let name = f
@@ -65,4 +46,19 @@ fn main() {
     out.push_str("];\n");
     let dest = PathBuf::from(std::env::var_os("OUT_DIR").expect("set by cargo")).join("robots.rs");
     std::fs::write(dest, out).expect("OUT_DIR is writable");
+}
+
+/// The files of `dir` ending in `.ext` (not `Cargo.toml`), sorted; cargo reruns this
+/// script when `dir` changes.
+fn files_of(dir: &std::path::Path, ext: &str) -> Vec<PathBuf> {
+    println!("cargo:rerun-if-changed={}", dir.display());
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == ext) && !p.ends_with("Cargo.toml"))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
 }
