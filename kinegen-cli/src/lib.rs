@@ -1,11 +1,13 @@
 //! The `kinegen` command: a robot's closed-form kinematics for people and tools.
 //!
-//! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all] [--latex]`
+//! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all|model] [--latex]`
 //! - `kinegen rust ROBOT` — the code `kinematics!` generates, pretty-printed
 //! - `kinegen eval ROBOT --q 0.1,0.2,… [--json]`
 //! - `kinegen stats ROBOT [--json]`
 //!
-//! ROBOT is a TOML file (`robots/ur5.toml`) or the name of a shipped robot (`ur5`).
+//! ROBOT is a TOML file (`robots/ur5.toml`), a URDF file (`arm.urdf`, with `--base`,
+//! `--tip`, `--snap`; without them the root link and the only leaf) or the name of a
+//! shipped robot (`ur5`).
 //! Every command is a thin caller of `kinegen_core`; [`run`] returns the text to print,
 //! so it is testable without a process.
 
@@ -13,6 +15,7 @@ pub mod det_hook;
 pub mod error;
 pub mod eval;
 pub mod formulas;
+pub mod model;
 pub mod robots;
 pub mod stats;
 
@@ -21,6 +24,7 @@ use kinegen_core::{derive, generate, ItemHeader};
 
 pub use error::CliError;
 pub use formulas::What;
+pub use robots::UrdfArgs;
 
 /// Closed-form robot kinematics from DH tables.
 #[derive(Debug, Parser)]
@@ -36,8 +40,11 @@ pub struct Cli {
 pub enum Command {
     /// Show the closed forms (terminal text, or a LaTeX document body).
     Show {
-        /// A TOML file, or a shipped robot's name (ur5, puma560, planar_rr, …).
+        /// A TOML or URDF file, or a shipped robot's name (ur5, puma560, planar_rr, …).
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
         /// Which outputs.
         #[arg(long, value_enum, default_value = "all")]
         what: What,
@@ -47,13 +54,19 @@ pub enum Command {
     },
     /// Print the Rust code `kinematics!` generates for the robot (`pub struct <Name>`).
     Rust {
-        /// A TOML file, or a shipped robot's name.
+        /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
     },
     /// Evaluate the generated formulas at a configuration.
     Eval {
-        /// A TOML file, or a shipped robot's name.
+        /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
         /// Joint values, comma-separated (radians / metres), one per joint.
         #[arg(long, allow_hyphen_values = true)]
         q: String,
@@ -63,8 +76,11 @@ pub enum Command {
     },
     /// Operation counts of the generated code and the engine's time.
     Stats {
-        /// A TOML file, or a shipped robot's name.
+        /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -74,19 +90,32 @@ pub enum Command {
 /// Run a parsed command; `Ok` is the text for stdout.
 pub fn run(cli: &Cli) -> Result<String, CliError> {
     match &cli.command {
-        Command::Show { robot, what, latex } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Show {
+            robot,
+            urdf,
+            what,
+            latex,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
+            if *what == What::Model {
+                return Ok(model::show(&chain));
+            }
             let derived = derive(&chain, &options);
             let dets = det_hook::determinants(&chain, &derived);
             Ok(formulas::show(&chain, &derived.model, &dets, *what, *latex))
         }
-        Command::Rust { robot } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Rust { robot, urdf } => {
+            let (chain, options) = robots::load(robot, urdf)?;
             // Exactly the macro's call for `pub struct <Name>` (kinegen-macro's expand).
             Ok(generate(&chain, &ItemHeader::public(&chain.name), &options).pretty())
         }
-        Command::Eval { robot, q, json } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Eval {
+            robot,
+            urdf,
+            q,
+            json,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
             let q = eval::parse_q(q, chain.dof())?;
             let derived = derive(&chain, &options);
             let dets = det_hook::determinants(&chain, &derived);
@@ -97,8 +126,8 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 eval::to_table(&chain, &q, &v, &dets.missing)
             })
         }
-        Command::Stats { robot, json } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Stats { robot, urdf, json } => {
+            let (chain, options) = robots::load(robot, urdf)?;
             let t = std::time::Instant::now();
             let generated = generate(&chain, &ItemHeader::public(&chain.name), &options);
             let time_ms = t.elapsed().as_secs_f64() * 1e3;

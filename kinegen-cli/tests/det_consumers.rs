@@ -10,7 +10,7 @@ use kinegen_core::{generate, numeric, ItemHeader};
 
 #[test]
 fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
-    let (chain, options) = robots::load("planar_rr").unwrap();
+    let (chain, options) = robots::load("planar_rr", &Default::default()).unwrap();
     // The model without the engine's own determinant, so the hand-built one is new.
     let mut model = order::build(&chain, &options);
     let t = model.task.clone();

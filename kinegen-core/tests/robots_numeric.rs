@@ -65,6 +65,7 @@ fn all_expected_robots_are_present() {
         "abb_irb140",
         "scara",
         "cylindrical_rpp",
+        "kinova_jaco",
     ] {
         assert!(
             names.iter().any(|n| n == want),

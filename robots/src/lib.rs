@@ -1,5 +1,6 @@
 //! Real robots' kinematics, generated at compile time by `kinegen::kinematics!` from the
-//! DH tables in this crate's TOML files (each cites its source).
+//! DH tables in this crate's TOML files (each cites its source), and from URDF files
+//! (`urdf/`, `Ur5Urdf`, `PandaUrdf`).
 //!
 //! ```
 //! use kinegen_robots::Ur5;
@@ -78,6 +79,20 @@ kinegen::kinematics! {
 kinegen::kinematics! {
     /// SCARA (Adept Cobra s600), task `[x, y, z, rz]`.
     pub struct Scara = "scara.toml";
+}
+kinegen::kinematics! {
+    /// Kinova Jaco (6 joints, 60° wrist; joint 1 flipped, as in RTB's model).
+    pub struct KinovaJaco = "kinova_jaco.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR5 from its URDF (`urdf/ur5.urdf`, `base_link` → `tool0`), with
+    /// UR's DH names for the lengths.
+    pub struct Ur5Urdf = "ur5_urdf.toml";
+}
+kinegen::kinematics! {
+    /// Franka Emika Panda from its URDF, `panda_link0` → `panda_hand_tcp` (the fingers,
+    /// one mimicking the other, are off the chain).
+    pub struct PandaUrdf = "panda_urdf.toml";
 }
 kinegen::kinematics! {
     /// Cylindrical RPP arm.

@@ -96,6 +96,7 @@ proptest! {
         check(&KukaKr6R900::default(), "kuka_kr6_r900.toml", q);
         check(&AbbIrb120::default(), "abb_irb120.toml", q);
         check(&AbbIrb140::default(), "abb_irb140.toml", q);
+        check(&KinovaJaco::default(), "kinova_jaco.toml", q);
         let mut qs = q;
         qs[2] = 0.2 + q[2].abs() / 4.0; // prismatic: metres
         check(&Stanford::default(), "stanford.toml", qs);

@@ -6,6 +6,9 @@
 //! - modified (proximal, Craig): `A_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)`; the
 //!   joint moves about `z_i`, read in the link frame.
 //!
+//! A flipped joint (`flip = true`) runs against z: its motion is `Rz(−q_i + θ_i)` or
+//! `Tz(−q_i + d_i)` (`Motion::sign = -1`).
+//!
 //! Base and tool are `Trans(xyz) · Rz(yaw) · Ry(pitch) · Rx(roll)`, zero entries left out.
 
 use crate::chain::{Axis, AxisAt, Chain, Elem, Link, Motion};
@@ -34,19 +37,22 @@ impl Robot {
             }
             .into(),
             summary: summary(self),
+            snaps: Vec::new(),
         }
     }
 }
 
 /// One DH row.
 fn link(convention: Convention, i: usize, j: &Joint) -> Link {
-    // The joint variable adds to θ or d; the other of the two is a constant.
+    // The joint variable adds to θ or d (a flipped one subtracts); the other of the two
+    // is a constant.
+    let sign = if j.flip { -1 } else { 1 };
     let (motion, fixed) = match j.kind {
         JointKind::Revolute => (
             Motion {
                 kind: j.kind,
                 axis: Axis::Z,
-                sign: 1,
+                sign,
                 offset: j.theta.clone(),
             },
             Elem::Trans(Axis::Z, j.d.clone()),
@@ -55,7 +61,7 @@ fn link(convention: Convention, i: usize, j: &Joint) -> Link {
             Motion {
                 kind: j.kind,
                 axis: Axis::Z,
-                sign: 1,
+                sign,
                 offset: j.d.clone(),
             },
             Elem::Rot(Axis::Z, j.theta.clone()),
@@ -118,7 +124,11 @@ fn summary(robot: &Robot) -> Vec<String> {
         "|---|---|---|---|---|---|".into(),
     ];
     for (i, j) in robot.joints.iter().enumerate() {
-        let q = format!("q{}", i + 1);
+        let q = if j.flip {
+            format!("-q{}", i + 1)
+        } else {
+            format!("q{}", i + 1)
+        };
         let (d, th) = match j.kind {
             JointKind::Revolute => (j.d.to_string(), with_var(&q, &j.theta.to_string())),
             JointKind::Prismatic => (with_var(&q, &j.d.to_string()), j.theta.to_string()),

@@ -193,11 +193,15 @@ pub struct NumericJoint {
     pub d: f64,
     /// Joint angle (constant part for a revolute joint).
     pub theta: f64,
+    /// The joint runs against its axis (the Robotics Toolbox's `flip`): θ = −q + theta.
+    pub flip: bool,
 }
 
 impl NumericJoint {
-    /// `(θ, d)` with the joint variable added to the right one.
+    /// `(θ, d)` with the joint variable added to the right one (its negative for a
+    /// flipped joint, as RTB's `DHLink.A`: `q = -q + offset`).
     fn theta_d(&self, q: f64) -> (f64, f64) {
+        let q = if self.flip { -q } else { q };
         match self.kind {
             JointKind::Revolute => (self.theta + q, self.d),
             JointKind::Prismatic => (self.theta, self.d + q),
@@ -244,6 +248,7 @@ impl NumericRobot {
                 alpha: finite(j.alpha.eval(param), &at("alpha"))?,
                 d: finite(j.d.eval(param), &at("d"))?,
                 theta: finite(j.theta.eval(param), &at("theta"))?,
+                flip: j.flip,
             });
         }
         let frame = |f: &Option<Frame>, name: &str| -> Result<Matrix4<f64>, NumericError> {
@@ -327,6 +332,8 @@ impl NumericRobot {
                 Convention::Modified => frames[i],
             };
             let z: Vector3<f64> = axis_frame.fixed_view::<3, 1>(0, 2).into_owned();
+            // A flipped joint's positive rate turns (or slides) about −z.
+            let z = if joint.flip { -z } else { z };
             let o = position(&axis_frame);
             let (v, w) = match joint.kind {
                 JointKind::Revolute => (z.cross(&(p - o)), z),
@@ -409,15 +416,18 @@ impl NumericRobot {
             }
         };
         let actuate =
-            |i: usize, kind: JointKind, w: &mut DMatrix<f64>, v: &mut DMatrix<f64>| match kind {
-                JointKind::Revolute => w[(2, i)] += 1.0,
-                JointKind::Prismatic => v[(2, i)] += 1.0,
+            |i: usize, joint: &NumericJoint, w: &mut DMatrix<f64>, v: &mut DMatrix<f64>| {
+                let rate = if joint.flip { -1.0 } else { 1.0 };
+                match joint.kind {
+                    JointKind::Revolute => w[(2, i)] += rate,
+                    JointKind::Prismatic => v[(2, i)] += rate,
+                }
             };
         for (i, joint) in self.joints.iter().enumerate() {
             let (theta, d) = joint.theta_d(q[i]);
             match self.convention {
                 Convention::Standard => {
-                    actuate(i, joint.kind, &mut w, &mut v);
+                    actuate(i, joint, &mut w, &mut v);
                     cross(&self.link(i, q[i]), &mut w, &mut v);
                 }
                 Convention::Modified => {
@@ -426,7 +436,7 @@ impl NumericRobot {
                         &mut w,
                         &mut v,
                     );
-                    actuate(i, joint.kind, &mut w, &mut v);
+                    actuate(i, joint, &mut w, &mut v);
                     cross(&(rot_z(theta) * trans(0.0, 0.0, d)), &mut w, &mut v);
                 }
             }
@@ -493,6 +503,26 @@ pub fn manipulability(j: &DMatrix<f64>) -> f64 {
 /// [`manipulability`] of a 6×N Jacobian.
 pub fn manipulability6(j: &Jacobian) -> f64 {
     manipulability(&DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]))
+}
+
+/// `count` deterministic configurations of `dof` joint values, uniform in [−π, π]
+/// (SplitMix64 from `seed`): the random inputs of the tests, the same on every run.
+pub fn configurations(seed: u64, count: usize, dof: usize) -> Vec<Vec<f64>> {
+    let mut state = seed;
+    let mut unit = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| {
+            (0..dof)
+                .map(|_| std::f64::consts::PI * (2.0 * unit() - 1.0))
+                .collect()
+        })
+        .collect()
 }
 
 /// [`NumericRobot::fk`] with default parameters.
