@@ -177,6 +177,7 @@ self_test!(ur3, Ur3, 3);
 self_test!(ur5, Ur5, 5);
 self_test!(ur10, Ur10, 10);
 self_test!(ur5e, Ur5e, 55);
+self_test!(ur5_from_urdf, Ur5Urdf, 505);
 self_test!(ur10e, Ur10e, 1010);
 self_test!(puma560, Puma560, 560);
 self_test!(stanford, Stanford, 1969);

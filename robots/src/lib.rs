@@ -82,6 +82,10 @@ kinegen::kinematics! {
 }
 kinegen::kinematics! {
     /// Kinova Jaco (6 joints, 60° wrist; joint 1 flipped, as in RTB's model).
+    ///
+    /// No closed-form IK: the 60° wrist is not spherical and no three axes are parallel
+    /// (the compile-time note names them); the numerical solvers of `kinegen::ik` serve it.
+    #[allow(deprecated)]
     pub struct KinovaJaco = "kinova_jaco.toml";
 }
 kinegen::kinematics! {
@@ -91,7 +95,8 @@ kinegen::kinematics! {
 }
 kinegen::kinematics! {
     /// Franka Emika Panda from its URDF, `panda_link0` → `panda_hand_tcp` (the fingers,
-    /// one mimicking the other, are off the chain).
+    /// one mimicking the other, are off the chain). No closed-form IK, as for [`Panda`].
+    #[allow(deprecated)]
     pub struct PandaUrdf = "panda_urdf.toml";
 }
 kinegen::kinematics! {
