@@ -4,6 +4,8 @@
 //! - `kinegen rust ROBOT` — the code `kinematics!` generates, pretty-printed
 //! - `kinegen eval ROBOT --q 0.1,0.2,… [--json]`
 //! - `kinegen stats ROBOT [--json]`
+//! - `kinegen ik ROBOT --pose m00,…,m33 [--near q1,…] [--json]` or `--poses FILE.json
+//!   [--near FILE.json]` — every closed-form IK solution
 //!
 //! ROBOT is a TOML file (`robots/ur5.toml`), a URDF file (`arm.urdf`, with `--base`,
 //! `--tip`, `--snap`; without them the root link and the only leaf) or the name of a
@@ -15,6 +17,7 @@ pub mod det_hook;
 pub mod error;
 pub mod eval;
 pub mod formulas;
+pub mod ik;
 pub mod model;
 pub mod robots;
 pub mod stats;
@@ -85,6 +88,30 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Every closed-form inverse-kinematics solution of a pose (or of a file of poses).
+    Ik {
+        /// A TOML or URDF file, or a shipped robot's name.
+        robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
+        /// The pose: 16 numbers, row-major 4×4 (`m00,m01,…,m33`).
+        #[arg(long, allow_hyphen_values = true, conflicts_with = "poses")]
+        pose: Option<String>,
+        /// A JSON file holding an array of 4×4 poses (arrays of 4 rows of 4 numbers).
+        #[arg(long)]
+        poses: Option<std::path::PathBuf>,
+        /// The current configuration: with `--pose`, `q1,…,qN`; with `--poses`, a JSON
+        /// file of one joint vector per pose. Adds `near`, the answer of `ik_near`.
+        #[arg(long, allow_hyphen_values = true)]
+        near: Option<String>,
+        /// For a 7-joint arm: the locked joint's value (else taken from `--near`).
+        #[arg(long, allow_hyphen_values = true)]
+        locked: Option<f64>,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 /// Run a parsed command; `Ok` is the text for stdout.
@@ -101,6 +128,9 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 return Ok(model::show(&chain));
             }
             let derived = derive(&chain, &options);
+            if *what == What::Ik {
+                return Ok(ik::show(&chain, &derived));
+            }
             let dets = det_hook::determinants(&chain, &derived);
             Ok(formulas::show(&chain, &derived.model, &dets, *what, *latex))
         }
@@ -139,6 +169,26 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             } else {
                 stats::to_table(&chain, &s, &dets.missing)
             })
+        }
+        Command::Ik {
+            robot,
+            urdf,
+            pose,
+            poses,
+            near,
+            locked,
+            json,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
+            let derived = derive(&chain, &options);
+            let request = ik::Request {
+                pose: pose.as_deref(),
+                poses: poses.as_deref(),
+                near: near.as_deref(),
+                locked: *locked,
+                json: *json,
+            };
+            ik::run(&chain, &derived, &request)
         }
     }
 }
