@@ -6,7 +6,9 @@ use kinegen_core::{Chain, Options};
 
 use crate::error::CliError;
 
-include!(concat!(env!("OUT_DIR"), "/robots.rs"));
+/// The shipped robots, `(name, label, TOML source)`, from the `kinegen-robots` crate (so
+/// they travel with the published package, not only with this workspace).
+const ROBOTS: &[(&str, &str, &str)] = kinegen_robots::TABLES;
 
 /// Names of the shipped robots (`ur5`, `puma560`, …).
 pub fn names() -> impl Iterator<Item = &'static str> {

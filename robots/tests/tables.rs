@@ -1,0 +1,25 @@
+//! `TABLES` lists exactly the TOML files of this crate, with their contents.
+
+#[test]
+fn tables_are_the_toml_files() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|f| f.ends_with(".toml") && f != "Cargo.toml")
+        .collect();
+    files.sort();
+    let listed: Vec<String> = kinegen_robots::TABLES
+        .iter()
+        .map(|(name, _, _)| format!("{name}.toml"))
+        .collect();
+    assert_eq!(
+        listed, files,
+        "add the new table to TABLES in robots/src/lib.rs"
+    );
+    for (name, label, source) in kinegen_robots::TABLES {
+        assert_eq!(*label, format!("robots/{name}.toml"));
+        let on_disk = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
+        assert_eq!(*source, on_disk, "{name}");
+    }
+}
