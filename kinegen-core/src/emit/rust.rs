@@ -85,7 +85,9 @@ fn the_struct(chain: &Chain, header: &ItemHeader, functions: &Functions) -> Stri
     let ident = header.ident.to_string();
     let vis = header.vis.to_string();
     let attrs = header.attrs.to_string();
-    let summary = struct_doc(chain);
+    // After the user's own doc comment, a paragraph of its own (not one run-on summary).
+    let gap = if has_doc(&header.attrs) { "///\n" } else { "" };
+    let summary = format!("{gap}{}", struct_doc(chain));
     if functions.fields.is_empty() {
         return format!(
             "{attrs}\n{summary}\n#[derive(Clone, Copy, Debug, Default, PartialEq)]\n{vis} struct {ident};\n"
@@ -101,6 +103,14 @@ fn the_struct(chain: &Chain, header: &ItemHeader, functions: &Functions) -> Stri
         "{attrs}\n{summary}\n#[derive(Clone, Copy, Debug, PartialEq)]\n{vis} struct {ident} {{\n{fields}}}\n\
          impl ::core::default::Default for {ident} {{\n/// The DH table's values.\nfn default() -> Self {{ Self {{ {defaults} }} }}\n}}\n"
     )
+}
+
+/// Whether `attrs` hold a doc comment (`#[doc = …]`).
+fn has_doc(attrs: &TokenStream) -> bool {
+    use syn::parse::Parser;
+    syn::Attribute::parse_outer
+        .parse2(attrs.clone())
+        .is_ok_and(|a| a.iter().any(|a| a.path().is_ident("doc")))
 }
 
 /// `impl Kinematics<N>` and, with task rows, `impl TaskKinematics<N, M>` (f64 only).
