@@ -12,7 +12,12 @@ use kinegen_core::{Chain, Options};
 
 use crate::error::CliError;
 
-include!(concat!(env!("OUT_DIR"), "/robots.rs"));
+/// The shipped robots, `(name, label, TOML source)`, from the `kinegen-robots` crate (so
+/// they travel with the published package, not only with this workspace).
+const ROBOTS: &[(&str, &str, &str)] = kinegen_robots::TABLES;
+
+/// The URDFs those robots may name, `(path relative to robots/, label, source)`.
+const URDFS: &[(&str, &str, &str)] = kinegen_robots::URDFS;
 
 /// Names of the shipped robots (`ur5`, `puma560`, …).
 pub fn names() -> impl Iterator<Item = &'static str> {

@@ -11,6 +11,7 @@
 //!
 //! No allocation anywhere: solution sets and solver state are on the stack.
 
+pub mod closed_form;
 #[cfg(feature = "std")]
 pub mod dispatch;
 pub mod families;
@@ -19,5 +20,6 @@ pub mod numeric;
 pub mod solutions;
 pub mod subproblems;
 
+pub use closed_form::InverseKinematics;
 pub use numeric::*;
 pub use solutions::{IkBranch, IkSolutions};

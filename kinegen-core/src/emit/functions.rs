@@ -392,12 +392,11 @@ impl Out<'_> {
         };
         let doc = format!(
             "Determinant of {which}, in closed form:\n\n```text\ndet J = {}\n```\n\n\
-             LaTeX: `{}`\n\n\
+             In LaTeX: [`Self::DET_LATEX`].\n\n\
              Rows `[vx vy vz ωx ωy ωz]` (linear velocity of the tool point); the value does not depend on \
              the frame the Jacobian is expressed in nor on the reference point. Signs follow the \
              table's convention and joint offsets. {} operations, {} `sin_cos`.",
             d.text,
-            d.latex,
             body.ops.total(),
             body.ops.trig
         );
@@ -436,7 +435,7 @@ impl Out<'_> {
             .collect();
         let text = format!("{:?}", d.text);
         self.konst(
-            format!("`det J` as text: `{}`.", d.text),
+            "`det J` as plain text, the closed form [`Self::jacobian_det`] computes.".into(),
             "DET",
             "&'static str".into(),
             text,

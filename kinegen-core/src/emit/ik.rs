@@ -16,6 +16,8 @@ pub struct CheckImpl {
     pub task_rows: Option<Vec<usize>>,
     /// Whether the type has `singular_factors` (a closed-form determinant).
     pub factors: bool,
+    /// The joint a 7-joint arm's closed form locks.
+    pub locked: Option<usize>,
 }
 
 /// The IK items and the `Check` impl for `chain`.
@@ -138,7 +140,14 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
             .map(|t| t.iter().map(|r| TaskRow::index(*r)).collect()),
         _ => None,
     };
-    (items, CheckImpl { task_rows, factors })
+    (
+        items,
+        CheckImpl {
+            task_rows,
+            factors,
+            locked: plan.locked,
+        },
+    )
 }
 
 /// `ik_seeded`: the solver call, then `finish`.
