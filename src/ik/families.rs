@@ -195,7 +195,7 @@ pub fn spherical_two_intersecting_prismatic(
     } else if disc < 0.0 {
         ([-b, -b], Fit::LeastSquares)
     } else {
-        let s = disc.sqrt();
+        let s = crate::math::sqrt(disc);
         ([-b + s, -b - s], Fit::Exact)
     };
     let n3 = if fit == Fit::Exact { 2 } else { 1 };

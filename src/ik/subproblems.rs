@@ -11,7 +11,7 @@
 //! meaningless.
 
 use super::geometry::{scale, sqrt0, V3};
-use crate::math::atan2;
+use crate::math::{atan2, sqrt};
 
 /// A discriminant smaller than this many times its estimated rounding error
 /// (`ε · terms`) is zero: the two roots are one double root.
@@ -107,7 +107,7 @@ pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
     }
     let theta = atan2(k.dot(&a.cross(&b)), a.dot(&b));
     let same = (na - nb).abs() <= 1e-9 * (na + nb)
-        && (k.dot(p1) - k.dot(p2)).abs() <= 1e-9 * (s1 + s2).sqrt();
+        && (k.dot(p1) - k.dot(p2)).abs() <= 1e-9 * sqrt(s1 + s2);
     (theta, if same { Fit::Exact } else { Fit::LeastSquares })
 }
 
@@ -128,7 +128,7 @@ fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> R
     }
     let phi = atan2(sa, ca);
     let disc = rr - b * b;
-    let noise = EPS * (2.0 * rr.sqrt() * (terms + mag2.sqrt()) + rr);
+    let noise = EPS * (2.0 * sqrt(rr) * (terms + sqrt(mag2)) + rr);
     if disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr) {
         let theta = if b >= 0.0 {
             phi
@@ -237,11 +237,22 @@ fn mild(f: Fit) -> Fit {
 /// `θ` wrapped into `(−π, π]`.
 pub fn wrap(theta: f64) -> f64 {
     use core::f64::consts::{PI, TAU};
-    let mut t = theta % TAU;
+    // Solver angles come from atan2 and sums of a few of them: almost always within one
+    // turn, where a comparison is enough (`%` is a libm call, a fifth of a solve).
+    let mut t = theta;
     if t > PI {
         t -= TAU;
     } else if t <= -PI {
         t += TAU;
+    }
+    if t > PI || t <= -PI {
+        // Further out (a caller's free value): reduce exactly as before.
+        t = theta % TAU;
+        if t > PI {
+            t -= TAU;
+        } else if t <= -PI {
+            t += TAU;
+        }
     }
     t
 }

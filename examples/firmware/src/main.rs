@@ -1,16 +1,19 @@
-//! UR5 forward kinematics, Jacobian and determinant in f64 and f32 on a Cortex-M4F,
+//! UR5 forward kinematics, Jacobian and determinant in f64 and f32, and the closed-form
+//! inverse kinematics (all solutions, f64) on a Cortex-M4F,
 //! reported over semihosting (QEMU `mps2-an386`; see README.md).
 //!
 //! Output, one record per line, fields separated by one space, numbers in Rust's `{:?}`
 //! form (shortest text that reads back to the same float):
 //!
 //! ```text
-//! kinegen-firmware v1
+//! kinegen-firmware v2
 //! cpacr 0x00f00000                      FPU access bits (CP10/CP11 full access = 0x00f00000)
 //! <f64|f32> <case> q   <6 joint values>
 //! <f64|f32> <case> fk  <16 entries of T, row-major>
 //! <f64|f32> <case> jac <36 entries of J, row-major>
 //! <f64|f32> <case> det <det J>
+//! f64 <case> ik <count> then per solution: <1 if exact else 0> <6 joint values>
+//!                                       (every solution of `ik(fk(q))`)
 //! end
 //! ```
 //!
@@ -48,6 +51,12 @@ mod firmware {
     #[inline(never)]
     pub fn ur5_jacobian_det_f64(r: &Ur5, q: &[f64; 6]) -> f64 {
         r.jacobian_det(q)
+    }
+    /// `Ur5::ik` (f64): every closed-form solution of a pose.
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_ik_f64(r: &Ur5, pose: &[[f64; 4]; 4]) -> kinegen::ik::IkSolutions<6, 8> {
+        r.ik(pose)
     }
     /// `Ur5F32::fk` (f32, on the FPU).
     #[no_mangle]
@@ -92,6 +101,14 @@ mod firmware {
         let _ = writeln!(out);
     }
 
+    /// The solutions as the `ik` record lists them (see `kinegen_firmware::ik_record`).
+    fn ik_record(s: &kinegen::ik::IkSolutions<6, 8>) -> impl Iterator<Item = f64> + '_ {
+        core::iter::once(s.len() as f64).chain(
+            s.iter()
+                .flat_map(|b| core::iter::once(if b.exact { 1.0 } else { 0.0 }).chain(b.q)),
+        )
+    }
+
     #[entry]
     fn main() -> ! {
         let Ok(mut out) = hio::hstdout() else {
@@ -132,6 +149,9 @@ mod firmware {
                 "det",
                 [ur5_jacobian_det_f64(&r64, &q)],
             );
+
+            let pose = black_box(ur5_fk_f64(&r64, &q));
+            record(&mut out, "f64", case, "ik", ik_record(&ur5_ik_f64(&r64, &pose)));
 
             let q = black_box(to_f32(&q));
             record(&mut out, "f32", case, "q", q);

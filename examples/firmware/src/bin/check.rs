@@ -197,6 +197,23 @@ fn main() -> ExitCode {
             &[r64.jacobian_det(q)],
             &exact,
         );
+        // Every IK solution of fk(q): the same count, flags and order; joint values to
+        // 1e-9 rad (the firmware's atan2/sqrt come from the `libm` crate, the host's from
+        // the platform: a few ulps apart, amplified at most by the subproblems' conditioning
+        // away from singular poses).
+        let ik = r64.ik(&r64.fk(q));
+        let mut want = vec![ik.len() as f64];
+        for b in ik.iter() {
+            want.push(if b.exact { 1.0 } else { 0.0 });
+            want.extend(b.q);
+        }
+        f64_fw.check("ik", case, get("f64", case, "ik"), &want, &|i| {
+            if i == 0 || (i - 1) % 7 == 0 {
+                0.0
+            } else {
+                1e-9
+            }
+        });
     }
     f64_fw.report("f64 firmware vs f64 host");
     failures.append(&mut f64_failures);
