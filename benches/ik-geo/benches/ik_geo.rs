@@ -1,0 +1,197 @@
+//! kinegen's generated closed-form `ik` against the `ik-geo` crate (IK-Geo, Elias & Wen,
+//! subproblem decomposition), all solutions per call, on the same 1 000 poses (fk of
+//! configurations within the limits, the seed of `benches/ik_closed_form.rs`).
+//!
+//! ik-geo is given the very geometry kinegen derives (`ik_geometry()`: joint axes and
+//! points at q = 0, in ik-geo's product-of-exponentials form) and the same family
+//! (three parallel + two intersecting for the UR5, spherical wrist + two parallel for the
+//! PUMA 560). A one-off report checks that both forward kinematics agree, and counts the
+//! solutions each returns, the exact ones (kinegen's fk within 1e-9 of the pose) and how
+//! often the generating configuration is among them.
+//!
+//! Run (needs CMake for NLopt): `cargo bench --manifest-path benches/ik-geo/Cargo.toml`.
+
+use std::f64::consts::PI;
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use ik_geo::nalgebra::{Matrix3, Matrix3x6, SMatrix, Vector3, Vector6};
+
+type Matrix3x7 = SMatrix<f64, 3, 7>;
+use ik_geo::robot::{spherical_two_parallel, three_parallel_two_intersecting, IKSolver, Robot};
+use kinegen::ik::geometry::Geometry;
+use kinegen::ik::XorShift64;
+use kinegen::Kinematics;
+use kinegen_robots::{Puma560, Ur5};
+
+const POSES: usize = 1000;
+
+fn poses<R: Kinematics<6>>(robot: &R, seed: u64) -> Vec<([[f64; 4]; 4], [f64; 6])> {
+    let limits = robot.limits();
+    let mut rng = XorShift64::new(seed);
+    (0..POSES)
+        .map(|_| {
+            let q = rng.configuration(&limits);
+            (robot.fk(&q), q)
+        })
+        .collect()
+}
+
+/// kinegen's zero-configuration geometry as ik-geo's (H, P): P₀ = p₁, Pᵢ = pᵢ₊₁ − pᵢ,
+/// P₆ = p_tool − p₆. ik-geo's fk has no tool rotation: its R is kinegen's R · R_toolᵀ.
+///
+/// A spherical wrist's three axes get one point, the wrist centre (ik-geo's spherical
+/// families read `P₄ = P₅ = 0`; kinegen's points are any points on the axes).
+fn poe(g: &Geometry<6>, spherical_wrist: bool) -> (Matrix3x6<f64>, Matrix3x7) {
+    let mut g = *g;
+    if spherical_wrist {
+        let (c, _) =
+            kinegen::ik::geometry::closest_points(&g.p[3], &g.h[3], &g.p[4], &g.h[4], 1e-12)
+                .expect("axes 4 and 5 of a spherical wrist meet");
+        g.p[3] = c;
+        g.p[4] = c;
+        g.p[5] = c;
+    }
+    let h = Matrix3x6::from_fn(|r, c| g.h[c][r]);
+    let p = Matrix3x7::from_fn(|r, c| match c {
+        0 => g.p[0][r],
+        6 => g.p_tool[r] - g.p[5][r],
+        _ => g.p[c][r] - g.p[c - 1][r],
+    });
+    (h, p)
+}
+
+/// kinegen's pose → ik-geo's (R, t).
+fn target(g: &Geometry<6>, pose: &[[f64; 4]; 4]) -> (Matrix3<f64>, Vector3<f64>) {
+    let r = Matrix3::from_fn(|i, j| pose[i][j]);
+    let rt = Matrix3::from_fn(|i, j| g.r_tool[(i, j)]);
+    (
+        r * rt.transpose(),
+        Vector3::new(pose[0][3], pose[1][3], pose[2][3]),
+    )
+}
+
+fn miss<R: Kinematics<6>>(robot: &R, q: &[f64; 6], pose: &[[f64; 4]; 4]) -> f64 {
+    let t = robot.fk(q);
+    (0..3)
+        .flat_map(|r| (0..4).map(move |c| (r, c)))
+        .map(|(r, c)| (t[r][c] - pose[r][c]).abs())
+        .fold(0.0, f64::max)
+}
+
+fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
+    a.iter().zip(b).all(|(x, y)| {
+        let d = x - y;
+        (d - 2.0 * PI * (d / (2.0 * PI)).round()).abs() < 1e-6
+    })
+}
+
+fn check_fk(name: &str, robot: &Robot, g: &Geometry<6>, set: &[([[f64; 4]; 4], [f64; 6])]) {
+    for (pose, q) in set {
+        let (r, t) = robot.fk(q);
+        let (r0, t0) = target(g, pose);
+        let d = (r - r0).amax() + (t - t0).amax();
+        assert!(
+            d < 1e-9,
+            "{name}: ik-geo's fk differs from kinegen's at {q:?} by {d:e}"
+        );
+    }
+}
+
+fn report<R: Kinematics<6>>(
+    name: &str,
+    robot: &R,
+    ours: impl Fn(&[[f64; 4]; 4]) -> Vec<([f64; 6], bool)>,
+    geo: &Robot,
+    g: &Geometry<6>,
+    set: &[([[f64; 4]; 4], [f64; 6])],
+) {
+    check_fk(name, geo, g, set);
+    let mut tally = [[0usize; 4]; 2]; // solutions, flagged exact, exact by fk, generating q found
+    for (pose, q0) in set {
+        let (r, t) = target(g, pose);
+        let theirs: Vec<([f64; 6], bool)> = geo
+            .ik(r, t)
+            .into_iter()
+            .map(|(q, ls): (Vector6<f64>, bool)| (std::array::from_fn(|i| q[i]), !ls))
+            .collect();
+        for (k, sols) in [ours(pose), theirs].iter().enumerate() {
+            tally[k][0] += sols.len();
+            tally[k][1] += sols.iter().filter(|s| s.1).count();
+            tally[k][2] += sols
+                .iter()
+                .filter(|s| miss(robot, &s.0, pose) < 1e-9)
+                .count();
+            tally[k][3] += sols.iter().any(|s| same(&s.0, q0)) as usize;
+        }
+    }
+    for (k, who) in ["kinegen", "ik-geo"].iter().enumerate() {
+        let [n, flagged, exact, found] = tally[k];
+        println!(
+            "{name} {who:<8} {n:>5} solutions, {flagged:>5} flagged exact, {exact:>5} exact by fk (1e-9), generating q among them for {found}/{POSES}"
+        );
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let ur5 = Ur5::default();
+    let puma = Puma560::default();
+    let (gu, gp) = (ur5.ik_geometry(), puma.ik_geometry());
+    let (hu, pu) = poe(&gu, false);
+    let (hp, pp) = poe(&gp, true);
+    let geo_ur5 = three_parallel_two_intersecting(hu, pu);
+    let geo_puma = spherical_two_parallel(hp, pp);
+    let ur5_set = poses(&ur5, 2026);
+    let puma_set = poses(&puma, 2026);
+    report(
+        "UR5     ",
+        &ur5,
+        |p| ur5.ik(p).iter().map(|b| (b.q, b.exact)).collect(),
+        &geo_ur5,
+        &gu,
+        &ur5_set,
+    );
+    report(
+        "PUMA 560",
+        &puma,
+        |p| puma.ik(p).iter().map(|b| (b.q, b.exact)).collect(),
+        &geo_puma,
+        &gp,
+        &puma_set,
+    );
+    let ur5_targets: Vec<_> = ur5_set.iter().map(|(p, _)| target(&gu, p)).collect();
+    let puma_targets: Vec<_> = puma_set.iter().map(|(p, _)| target(&gp, p)).collect();
+    let mut g = c.benchmark_group("ik_all_solutions_1000_poses");
+    g.bench_function("ur5_kinegen_ik", |b| {
+        b.iter(|| {
+            for (pose, _) in &ur5_set {
+                black_box(ur5.ik(black_box(pose)));
+            }
+        })
+    });
+    g.bench_function("ur5_ik_geo", |b| {
+        b.iter(|| {
+            for (r, t) in &ur5_targets {
+                black_box(geo_ur5.ik(black_box(*r), black_box(*t)));
+            }
+        })
+    });
+    g.bench_function("puma560_kinegen_ik", |b| {
+        b.iter(|| {
+            for (pose, _) in &puma_set {
+                black_box(puma.ik(black_box(pose)));
+            }
+        })
+    });
+    g.bench_function("puma560_ik_geo", |b| {
+        b.iter(|| {
+            for (r, t) in &puma_targets {
+                black_box(geo_puma.ik(black_box(*r), black_box(*t)));
+            }
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
