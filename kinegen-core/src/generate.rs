@@ -2,7 +2,8 @@
 //! pretty-printable Rust item out.
 //!
 //! ```text
-//! Chain ─ simplify::order ─▶ Model ─ det ─▶ DetModel ─ emit::functions ─▶ Functions ─ emit::rust ─▶ tokens
+//! Chain ─ simplify::order ─▶ Model ─ det ─▶ DetModel ─ second order ─▶ SecondOrder, DetGradient
+//!       ─ emit::functions ─▶ Functions ─ emit::rust ─▶ tokens
 //! ```
 
 use proc_macro2::TokenStream;
@@ -11,10 +12,13 @@ use crate::chain::Chain;
 use crate::emit::functions::{functions, Stats};
 use crate::emit::rust::{item, ItemHeader};
 use crate::kinematics::det::closed_form::{self, DetModel};
+use crate::kinematics::det::gradient::{det_gradient, DetGradient};
 use crate::kinematics::det::structural::square_rows;
 use crate::kinematics::model::Model;
+use crate::kinematics::second_order::{second_order, SecondOrder};
 use crate::model::options::{Deadline, Options};
 use crate::simplify::order::cheapest;
+use crate::simplify::pass::simplify_second_order;
 
 /// The engine's output.
 #[derive(Clone, Debug)]
@@ -47,6 +51,11 @@ pub struct Derived {
     /// The closed-form determinant of the square Jacobian (`Err`: why not; `None`: the
     /// Jacobian is not square).
     pub det: Option<Result<DetModel, String>>,
+    /// The Hessian, `J̇`, `J̇ q̇` and `J̇_ee`, built on the model's Jacobian.
+    pub second: SecondOrder,
+    /// The gradient of the closed-form determinant and of its factors (`None`: no closed
+    /// form; `Err`: why not).
+    pub det_gradient: Option<Result<DetGradient, String>>,
 }
 
 /// Generate the Rust item for a chain, within `options.budget` (its `time_ms` counts
@@ -64,7 +73,13 @@ pub struct Derived {
 pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
     let derived = derive(chain, options);
     // What the type holds: each method's straight-line code and doc, the constants.
-    let functions = functions(chain, &derived.model, &derived.det);
+    let functions = functions(
+        chain,
+        &derived.model,
+        &derived.det,
+        &derived.second,
+        &derived.det_gradient,
+    );
     // Printed, and parsed into tokens.
     let tokens = item(chain, header, &functions);
     let mut notes = derived.model.notes;
@@ -85,5 +100,18 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
     let mut model = cheapest(chain, options, deadline);
     // The determinant of the square Jacobian, factored, in closed form.
     let det = square_rows(chain).map(|_| closed_form::determinant(chain, &mut model));
-    Derived { model, det }
+    // Second order on the simplified Jacobian's nodes: Hessian, J̇, J̇q̇, J̇_ee, with
+    // signs moved for the fewest negations (checked); the determinant's gradient.
+    let mut second = second_order(chain, &mut model);
+    simplify_second_order(&mut model, &mut second);
+    let det_gradient = match &det {
+        Some(Ok(d)) => Some(det_gradient(&mut model, d, chain.dof())),
+        _ => None,
+    };
+    Derived {
+        model,
+        det,
+        second,
+        det_gradient,
+    }
 }

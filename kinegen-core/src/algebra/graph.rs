@@ -455,13 +455,37 @@ impl Graph {
         }
     }
 
+    /// Operations (additions, subtractions, products, negations of non-constants)
+    /// reachable from `outputs`, each shared node once: what straight-line code computing
+    /// them costs.
+    pub fn op_count(&self, outputs: &[Id]) -> usize {
+        let mut seen = std::collections::BTreeSet::new();
+        let mut stack = outputs.to_vec();
+        let mut ops = 0;
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
+            let node = &self.nodes[id as usize];
+            ops += usize::from(match node {
+                Node::Num(_) | Node::Leaf(_) => false,
+                Node::Neg(x) => self.as_num(*x).is_none(),
+                _ => true,
+            });
+            stack.extend(node.children());
+        }
+        ops
+    }
+
     /// Numeric value of a node with variable values `x`.
     pub fn eval(&self, id: Id, x: &dyn Fn(Var) -> f64) -> f64 {
         let mut memo = vec![None; self.nodes.len()];
         self.eval_memo(id, x, &mut memo)
     }
 
-    fn eval_memo(&self, id: Id, x: &dyn Fn(Var) -> f64, memo: &mut Vec<Option<f64>>) -> f64 {
+    /// Numeric value of a node, values of already evaluated nodes kept in `memo` (one
+    /// slot per node, `None` at first) for the next call with the same `x`.
+    pub fn eval_memo(&self, id: Id, x: &dyn Fn(Var) -> f64, memo: &mut Vec<Option<f64>>) -> f64 {
         if let Some(v) = memo[id as usize] {
             return v;
         }

@@ -3,7 +3,7 @@
 //! - [`code`]: straight-line code as Rust statements (shared `let`s, batched
 //!   `sin_cos_n`, angle-sum names) and operation counts.
 //! - [`functions`]: what the generated type holds — each method's body and doc, the
-//!   constants — as values.
+//!   constants — as values; [`second_order`] its second-order methods.
 //! - [`docs`], [`formulas`], [`latex`]: the closed forms for people (rustdoc,
 //!   `FORMULAS`, LaTeX).
 //! - [`rust`]: the item printed and parsed into tokens.
@@ -14,3 +14,4 @@ pub mod formulas;
 pub mod functions;
 pub mod latex;
 pub mod rust;
+pub mod second_order;

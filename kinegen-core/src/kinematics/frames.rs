@@ -26,6 +26,9 @@ pub struct SymbolicChain {
     pub joint_vars: Vec<(usize, Var)>,
     /// Ring variables of named parameters: `(name, var)`.
     pub param_vars: Vec<(String, Var)>,
+    /// Ring variables of joint rates `q̇_j`: `(joint, var)`, made by the outputs that
+    /// read them ([`SymbolicChain::rates`]).
+    pub rate_vars: Vec<(usize, Var)>,
     /// `base · A1 ⋯ Ai` for i = 1..=N.
     pub frames: Vec<Transform>,
     /// The base frame (frame 0).
@@ -131,12 +134,28 @@ impl SymbolicChain {
             angles: b.angles,
             joint_vars: b.joint_vars,
             param_vars: b.param_vars,
+            rate_vars: Vec::new(),
             frames,
             base,
             tool,
             axes,
         };
         (sym, pivot)
+    }
+}
+
+impl SymbolicChain {
+    /// The joint rates `q̇_1 … q̇_N` as leaves (`qd1`, …), made on first use.
+    pub fn rates(&mut self, n: usize) -> Vec<Id> {
+        (0..n)
+            .map(|j| {
+                let v = self.graph.ring.rate(j, &format!("qd{}", j + 1));
+                if !self.rate_vars.iter().any(|&(_, w)| w == v) {
+                    self.rate_vars.push((j, v));
+                }
+                self.graph.leaf(v)
+            })
+            .collect()
     }
 }
 

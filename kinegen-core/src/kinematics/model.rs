@@ -10,7 +10,7 @@ use crate::algebra::graph::Id;
 use crate::algebra::poly::VarKind;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
-use crate::kinematics::jacobian::{self, Rows};
+use crate::kinematics::jacobian::{self, LocalColumns, Rows};
 use crate::kinematics::transform::Transform;
 use crate::model::options::Deadline;
 use crate::simplify::polish::Report;
@@ -30,6 +30,9 @@ pub struct Model {
     pub jacobian_ee: Rows,
     /// Task Jacobian rows (empty without task rows).
     pub task: Rows,
+    /// With a middle frame: the Jacobian columns of the joints after it, in its
+    /// coordinates, as built (not simplified; see [`LocalColumns`]).
+    pub local: Option<LocalColumns>,
     /// The tool pose's 12 entries then the Jacobian's, row-major, for the fused
     /// `fk_and_jacobian` (same values as `fk_rows` and `jacobian`; the sign pass
     /// chooses their signs for the two together).
@@ -53,7 +56,7 @@ impl Model {
         let (mut sym, pivot) = SymbolicChain::build(chain, max_terms, pivot, deadline);
         let fk_rows = sym.tool.rows();
         let frame_rows = sym.frames.iter().map(Transform::rows).collect();
-        let jacobian = jacobian::geometric(chain, &mut sym, pivot.as_ref());
+        let (jacobian, local) = jacobian::geometric(chain, &mut sym, pivot.as_ref());
         let tool = sym.tool;
         let jacobian_ee = jacobian::rotate_into(&mut sym.graph, &tool, &jacobian);
         let task = chain
@@ -68,6 +71,7 @@ impl Model {
             jacobian,
             jacobian_ee,
             task,
+            local,
             fused: Vec::new(),
             notes: Vec::new(),
             polish: Report::default(),
@@ -175,13 +179,21 @@ impl Model {
 impl Model {
     /// Values of the ring's variables at joint values `q` with the chain's parameters:
     /// what the generated code computes before its first operation. Used to evaluate
-    /// the symbolic outputs directly (tests, the CLI's `eval`).
+    /// the symbolic outputs directly (tests, the CLI's `eval`). Joint rates are NaN
+    /// (see [`Model::variables_with_rates`]).
     pub fn variables(&self, chain: &Chain, q: &[f64]) -> Vec<f64> {
+        self.variables_with_rates(chain, q, None)
+    }
+
+    /// [`Model::variables`] with joint rates `qd` for the outputs that read them
+    /// (`None`: NaN, so a rate-dependent value cannot pass for a number).
+    pub fn variables_with_rates(&self, chain: &Chain, q: &[f64], qd: Option<&[f64]>) -> Vec<f64> {
         let ring = &self.sym.graph.ring;
         let mut vals = vec![f64::NAN; ring.len()];
         for (v, slot) in vals.iter_mut().enumerate() {
             *slot = match ring.kind(v as u32) {
                 VarKind::Joint(j) => q[*j],
+                VarKind::Rate(j) => qd.map_or(f64::NAN, |qd| qd[*j]),
                 VarKind::Param(n) => chain.param_value(n),
                 VarKind::Sqrt(k) => (*k as f64).sqrt(),
                 VarKind::Sin(_) | VarKind::Cos(_) => continue,
@@ -204,9 +216,22 @@ impl Model {
 
     /// Evaluate nodes at `q`.
     pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
-        let vals = self.variables(chain, q);
+        self.eval_with_rates(chain, q, None, ids)
+    }
+
+    /// Evaluate nodes at `q` and joint rates `qd` (`None`: rates are NaN).
+    pub fn eval_with_rates(
+        &self,
+        chain: &Chain,
+        q: &[f64],
+        qd: Option<&[f64]>,
+        ids: &[Id],
+    ) -> Vec<f64> {
+        let vals = self.variables_with_rates(chain, q, qd);
+        let g = &self.sym.graph;
+        let mut memo = vec![None; g.len()];
         ids.iter()
-            .map(|&id| self.sym.graph.eval(id, &|v| vals[v as usize]))
+            .map(|&id| g.eval_memo(id, &|v| vals[v as usize], &mut memo))
             .collect()
     }
 }

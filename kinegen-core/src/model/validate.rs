@@ -165,6 +165,19 @@ impl Validator {
                 );
                 continue;
             }
+            if name
+                .strip_prefix("qd")
+                .is_some_and(|j| j.bytes().all(|b| b.is_ascii_digit()))
+            {
+                self.err(
+                    p.clone(),
+                    format!(
+                        "`{name}` is the name of the joint rates (`qd`, `qd1`, …); choose another \
+                         parameter name"
+                    ),
+                );
+                continue;
+            }
             if is_rust_keyword(name) {
                 self.err(
                     p.clone(),

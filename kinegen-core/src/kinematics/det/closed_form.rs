@@ -157,7 +157,7 @@ fn factor(model: &mut Model, factored: &mut Factored, poly: Poly, power: u32) ->
 }
 
 /// `Σ coef · rest · Π sin/cos(angle sum)` as code.
-fn trig_node(model: &mut Model, terms: &[TrigTerm]) -> Id {
+pub(crate) fn trig_node(model: &mut Model, terms: &[TrigTerm]) -> Id {
     let sym = &mut model.sym;
     let g = &mut sym.graph;
     let mut acc = Vec::new();
