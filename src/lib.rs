@@ -16,6 +16,7 @@ extern crate self as kinegen;
 
 pub use kinegen_macro::kinematics;
 
+pub mod acceleration;
 pub mod adapters;
 pub mod analytic;
 pub mod control;
@@ -26,6 +27,7 @@ pub mod linalg;
 pub mod manipulability;
 pub mod math;
 pub mod pose_error;
+pub mod redundancy;
 pub mod velocity;
 
 pub use error::SolveError;
