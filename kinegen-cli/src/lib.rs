@@ -2,7 +2,7 @@
 //!
 //! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all] [--latex]`
 //! - `kinegen rust ROBOT` — the code `kinematics!` generates, pretty-printed
-//! - `kinegen eval ROBOT --q 0.1,0.2,… [--json]`
+//! - `kinegen eval ROBOT --q 0.1,0.2,… [--qd 0.3,…] [--json]`
 //! - `kinegen stats ROBOT [--json]`
 //!
 //! ROBOT is a TOML file (`robots/ur5.toml`) or the name of a shipped robot (`ur5`).
@@ -57,6 +57,10 @@ pub enum Command {
         /// Joint values, comma-separated (radians / metres), one per joint.
         #[arg(long, allow_hyphen_values = true)]
         q: String,
+        /// Joint rates, comma-separated (rad/s / m/s), one per joint: for `jacobian_dot`
+        /// and `jdot_qdot` (null without).
+        #[arg(long, allow_hyphen_values = true)]
+        qd: Option<String>,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -85,12 +89,16 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             // Exactly the macro's call for `pub struct <Name>` (kinegen-macro's expand).
             Ok(generate(&chain, &ItemHeader::public(&chain.name), &options).pretty())
         }
-        Command::Eval { robot, q, json } => {
+        Command::Eval { robot, q, qd, json } => {
             let (chain, options) = robots::load(robot)?;
             let q = eval::parse_q(q, chain.dof())?;
+            let qd = qd
+                .as_ref()
+                .map(|qd| eval::parse_joint_values(qd, chain.dof(), "--qd"))
+                .transpose()?;
             let derived = derive(&chain, &options);
             let dets = det_hook::determinants(&chain, &derived);
-            let v = eval::values(&chain, &derived.model, &dets, &q);
+            let v = eval::values(&chain, &derived, &dets, &q, qd.as_deref());
             Ok(if *json {
                 format!("{}\n", eval::to_json(&v))
             } else {
