@@ -5,6 +5,7 @@
 # `[profile.dev.build-override] opt-level = 3`; an empty crate is the baseline.
 #
 #   scripts/build_time.sh [robot ...]      (default: planar_rr puma560 ur5 panda)
+# A robot is a file of robots/ (ur5, or ur5_urdf: the UR5 from its URDF).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 if [ $# -gt 0 ]; then robots=("$@"); else robots=(planar_rr puma560 ur5 panda); fi
@@ -14,6 +15,7 @@ trap 'rm -rf "$work"' EXIT
 make_crate() { # dir, extra profile text
     mkdir -p "$1/src"
     cp "$root"/robots/*.toml "$1/"
+    cp -r "$root"/robots/urdf "$1/"
     cat > "$1/Cargo.toml" <<TOML
 [package]
 name = "macro-user"

@@ -55,6 +55,12 @@ pub fn pose_isometry(t: &[[f64; 4]; 4]) -> Isometry3<f64> {
     )
 }
 
+/// An [`Isometry3`] as the row-major homogeneous transform `fk` and `ik` use.
+pub fn pose_matrix(pose: &Isometry3<f64>) -> [[f64; 4]; 4] {
+    let m = pose.to_homogeneous();
+    core::array::from_fn(|r| core::array::from_fn(|c| m[(r, c)]))
+}
+
 /// The tool pose `fk(q)` as an [`Isometry3`].
 pub fn fk_isometry<R: Kinematics<N>, const N: usize>(robot: &R, q: &[f64; N]) -> Isometry3<f64> {
     pose_isometry(&robot.fk(q))

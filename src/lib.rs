@@ -5,6 +5,43 @@
 //! Hessian, `J̇ q̇` and the gradients of det J and of the manipulability as
 //! allocation-free, `no_std` Rust, plus a runtime that does what the textbooks do with
 //! them.
+//!
+//! ```
+//! kinegen::kinematics! {
+//!     /// A planar RR arm.
+//!     pub struct PlanarRr;
+//!     convention: standard,
+//!     params: { L1: 1.0, L2: 0.8 },
+//!     joints: [
+//!         revolute { a: L1, alpha: 0, d: 0 },
+//!         revolute { a: L2, alpha: 0, d: 0, limits: [-pi, pi] },
+//!     ],
+//!     task: [x, y],
+//! }
+//!
+//! let arm = PlanarRr::default(); // the named parameters are public fields
+//! let q = [0.3, 0.5];
+//! let t = arm.fk(&q); // [[f64; 4]; 4], the tool pose
+//! assert!((t[0][3] - (0.3f64.cos() + 0.8 * 0.8f64.cos())).abs() < 1e-12);
+//! let j = arm.jacobian(&q); // [[f64; 2]; 6], rows [vx vy vz ωx ωy ωz]
+//! assert_eq!(j[5], [1.0, 1.0]);
+//! // The task rows [x, y] are square, so their determinant has a closed form:
+//! assert_eq!(PlanarRr::DET, "L1*L2*sin(q2)");
+//! assert!((arm.jacobian_det(&q) - 0.8 * 0.5f64.sin()).abs() < 1e-12);
+//! // Calibrated values are just other field values; the code is the same.
+//! let longer = PlanarRr { L1: 1.2, ..arm };
+//! assert!((longer.jacobian_det(&q) - 1.2 * 0.8 * 0.5f64.sin()).abs() < 1e-12);
+//! ```
+//!
+//! A table can also come from a TOML file, relative to the crate's manifest
+//! (`kinegen::kinematics! { pub struct Ur5 = "robots/ur5.toml"; }`); the
+//! [`kinegen-robots`](https://docs.rs/kinegen-robots) crate holds 16 real robots made
+//! that way. Every generated function's rustdoc shows its closed form. The runtime
+//! modules work on any [`Kinematics`] robot: [`velocity`] (inverse velocity,
+//! pseudo-inverses, damped least squares), [`forces`], [`manipulability`], [`ik`],
+//! [`control`], [`trajectory`], and on the generated second order
+//! ([`SecondOrderKinematics`]) [`acceleration`] (resolved-acceleration control) and
+//! [`redundancy`] (gradient projection); [`math`] is what the generated code calls.
 #![no_std]
 #![warn(missing_docs)]
 
@@ -31,6 +68,7 @@ pub mod redundancy;
 pub mod velocity;
 
 pub use error::SolveError;
+pub use ik::closed_form::InverseKinematics;
 pub mod trajectory;
 
 /// A robot arm with `N` joints whose kinematics kinegen generated.

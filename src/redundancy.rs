@@ -46,7 +46,8 @@ impl Default for Projection {
 /// use nalgebra::SVector;
 /// kinegen::kinematics! {
 ///     /// A planar 4R arm: four joints for the three planar rows (vx, vy, ωz), so one
-///     /// degree of redundancy.
+///     /// degree of redundancy. (Its full-J manipulability `√det(J Jᵀ)` is identically
+///     /// 0 — a 6×4 J — so here the null-space term is 0 and the step is `J⁺ ẋ`.)
 ///     struct Arm4;
 ///     convention: standard,
 ///     joints: [

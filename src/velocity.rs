@@ -76,7 +76,12 @@ pub fn pinv_left<const M: usize, const N: usize>(
 }
 
 /// Right pseudo-inverse `J⁺ = Jᵀ(JJᵀ)⁻¹`, the minimum-norm inverse of a wide (`M ≤ N`,
-/// redundant) Jacobian of full row rank. `Err(Singular)` if `JJᵀ` is singular.
+/// redundant) Jacobian of full row rank. `Err(Singular)` if an LU pivot of `JJᵀ` is below
+/// `tolerance` times its largest entry. That test squares J's conditioning and is not a
+/// rank test: at an exact singularity the last pivot can stay above a small tolerance
+/// (2.5e-12 measured at a UR5 wrist singularity, `q5 = 0`), and the result is then
+/// meaningless. Where the arm may reach a singularity use [`pinv_svd`] or
+/// [`dls_velocity`].
 pub fn pinv_right<const M: usize, const N: usize>(
     jacobian: &SMatrix<f64, M, N>,
     tolerance: f64,

@@ -9,9 +9,14 @@ use kinegen::pose_error::wrap_angle;
 use kinegen::{Kinematics, SolveError};
 use nalgebra::{SVector, Vector3};
 use proptest::prelude::*;
+#[path = "../kinegen-core/tests/common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 use std::f64::consts::PI;
 
 proptest! {
+    #![proptest_config(fixed_seed(256))]
+
     #[test]
     fn wrap_angle_lands_in_half_open_interval(a in -1e3..1e3f64) {
         let w = wrap_angle(a);

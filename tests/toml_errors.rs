@@ -30,7 +30,7 @@ fn unknown_column() {
         errors(&one_joint("a = 0\nalhpa = \"pi/2\"\nd = 0", "")),
         [
             "robot.toml:4: joints[0]: missing column `alpha`",
-            "robot.toml:7: joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset or limits",
+            "robot.toml:7: joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset, limits or flip",
         ]
     );
 }

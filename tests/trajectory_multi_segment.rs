@@ -1,9 +1,13 @@
 //! Paths through via points: stopping at each, or passing with continuous velocity.
 
 use kinegen::trajectory::{
-    heuristic_via_velocities, Profile, StopAtVias, Stretch, ThroughVias, TrajectoryError,
+    heuristic_via_velocities, Cubic, Profile, StopAtVias, Stretch, ThroughVias, TrajectoryError,
 };
 use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
+#[path = "../kinegen-core/tests/common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 const K: usize = 5;
 
@@ -22,52 +26,146 @@ fn times() -> impl Strategy<Value = [f64; K]> {
     })
 }
 
+/// The peaks of a stop-at-each-via path stay within the limits, and it rests at each via.
+fn check_stop_at_vias(p: [f64; K], v_max: f64, a_max: f64) -> Result<(), TestCaseError> {
+    let path = StopAtVias::new(p, v_max, a_max).unwrap();
+    let t = *path.arrival_times();
+    prop_assert_eq!(t[0], 0.0);
+    prop_assert_eq!(t[K - 1], path.duration());
+    for i in 0..K {
+        prop_assert_eq!(path.position(t[i]), p[i]);
+        prop_assert_eq!(path.velocity(t[i]), 0.0);
+    }
+    for k in 0..=5000 {
+        let tk = path.duration() * k as f64 / 5000.0;
+        prop_assert!(path.velocity(tk).abs() <= v_max * (1.0 + 1e-12));
+        prop_assert!(path.acceleration(tk).abs() <= a_max * (1.0 + 1e-12));
+    }
+    Ok(())
+}
+
+/// What rounding can do to derivative `k ≤ 1` of a cubic piece evaluated at local time
+/// `tau`. Two sources, each a small multiple of `ε`: Horner's rule on degree ≤ 3 errs by
+/// at most `γ₆ ≈ 3ε` times the sum of the magnitudes of the terms (Higham, *Accuracy and
+/// Stability*, §5.1); the coefficients `a₂ = (3Δ − (2v₀ + v₁)T)/T²`,
+/// `a₃ = (−2Δ + (v₀ + v₁)T)/T³` carry `≲ 20ε` times the boundary data scaled to
+/// derivative `k` (`|q₀| + |q₁| + (|v₀| + |v₁|)T` for `k = 0`, `|Δ|/T + |v₀| + |v₁|` for
+/// `k = 1`). `32ε` times the sum covers both.
+fn rounding(seg: &Cubic, k: usize, tau: f64) -> f64 {
+    let c = seg.coefficients();
+    let terms: f64 = (k..4)
+        .map(|n| {
+            let factor: usize = (n - k + 1..=n).product();
+            factor as f64 * c[n].abs() * tau.powi((n - k) as i32)
+        })
+        .sum();
+    let big_t = seg.duration();
+    let (q0, q1) = (seg.position(0.0), seg.position(big_t));
+    let (v0, v1) = (seg.velocity(0.0).abs(), seg.velocity(big_t).abs());
+    let data = match k {
+        0 => q0.abs() + q1.abs() + (v0 + v1) * big_t,
+        _ => (q1 - q0).abs() / big_t + v0 + v1,
+    };
+    32.0 * f64::EPSILON * (terms + data)
+}
+
+/// Derivative `k` of a cubic piece from its coefficients (the polynomial itself, not the
+/// boundary values the piece returns exactly at its end).
+fn cubic_derivative(seg: &Cubic, k: usize, tau: f64) -> f64 {
+    let c = seg.coefficients();
+    (k..4)
+        .map(|n| {
+            let factor: usize = (n - k + 1..=n).product();
+            factor as f64 * c[n] * tau.powi((n - k) as i32)
+        })
+        .sum()
+}
+
+/// Continuity at each inner join `tᵢ` of a path through vias, with bounds derived from the
+/// path itself, never a fixed tolerance:
+/// - analytically: the piece that ends at `tᵢ`, evaluated from its coefficients, meets
+///   `pᵢ` and `vᵢ` (which the next piece starts from) to rounding;
+/// - through the whole profile, a step `h` to either side: `q̈` is linear on each piece,
+///   so the velocity moves by at most `h·max|q̈|` over a step (the max at an end of it),
+///   and the position by at most `h·max|q̇| ≤ h·(|vᵢ| + h·max|q̈|)`; on top, the rounding
+///   of `tᵢ ± h` (`ε·tᵢ` in time) and of the evaluation ([`rounding`]).
+fn check_continuous_at_joins(path: &ThroughVias<K>) -> Result<(), TestCaseError> {
+    let h = 1e-9;
+    let t = path.arrival_times();
+    let (p, v) = (path.position(t[K - 1]), path.via_velocities());
+    prop_assert_eq!(
+        p,
+        path.segment(K - 2).unwrap().position(t[K - 1] - t[K - 2])
+    );
+    for i in 1..K - 1 {
+        let (before, after) = (path.segment(i - 1).unwrap(), path.segment(i).unwrap());
+        let end = before.duration();
+        let (p_i, v_i) = (path.position(t[i]), v[i]);
+        let end_p = cubic_derivative(before, 0, end);
+        let end_v = cubic_derivative(before, 1, end);
+        prop_assert!(
+            (end_p - p_i).abs() <= rounding(before, 0, end),
+            "join {i}: q {end_p} vs {p_i}"
+        );
+        prop_assert!(
+            (end_v - v_i).abs() <= rounding(before, 1, end),
+            "join {i}: q̇ {end_v} vs {v_i}"
+        );
+
+        let a_left = path
+            .acceleration(t[i] - h)
+            .abs()
+            .max(before.acceleration(end).abs());
+        let a_right = path
+            .acceleration(t[i] + h)
+            .abs()
+            .max(after.acceleration(0.0).abs());
+        let step = h + 2.0 * f64::EPSILON * t[i];
+        let dv = path.velocity(t[i] + h) - path.velocity(t[i] - h);
+        let dv_bound = step * (a_left + a_right) + rounding(before, 1, end) + rounding(after, 1, h);
+        prop_assert!(dv.abs() <= dv_bound, "join {i}: Δq̇ = {dv} > {dv_bound}");
+        let speed = 2.0 * v_i.abs() + h * (a_left + a_right);
+        let dp = path.position(t[i] + h) - path.position(t[i] - h);
+        let dp_bound = step * speed + rounding(before, 0, end) + rounding(after, 0, h);
+        prop_assert!(dp.abs() <= dp_bound, "join {i}: Δq = {dp} > {dp_bound}");
+    }
+    Ok(())
+}
+
+/// A path through vias at given times: the heuristic via velocities, exactly the via
+/// points and velocities at the joins, continuous across them.
+fn check_through_vias(p: [f64; K], t: [f64; K]) -> Result<(), TestCaseError> {
+    let path = ThroughVias::new(p, t).unwrap();
+    let v = *path.via_velocities();
+    prop_assert_eq!(v, heuristic_via_velocities(&p, &t));
+    prop_assert_eq!(v[0], 0.0);
+    prop_assert_eq!(v[K - 1], 0.0);
+    for i in 0..K {
+        prop_assert_eq!(path.position(t[i]), p[i]);
+        if i < K - 1 {
+            prop_assert_eq!(path.velocity(t[i]), v[i]);
+        }
+        // The piece that ends here returns the same boundary values.
+        if i > 0 {
+            let seg = path.segment(i - 1).unwrap();
+            prop_assert_eq!(seg.position(seg.duration()), p[i]);
+            prop_assert_eq!(seg.velocity(seg.duration()), v[i]);
+        }
+    }
+    check_continuous_at_joins(&path)
+}
+
 proptest! {
+    #![proptest_config(fixed_seed(256))]
+
     #[test]
     fn stop_at_vias(p in points(), v_max in 0.1..5.0_f64, a_max in 0.1..50.0_f64) {
-        let path = StopAtVias::new(p, v_max, a_max).unwrap();
-        let t = *path.arrival_times();
-        prop_assert_eq!(t[0], 0.0);
-        prop_assert_eq!(t[K - 1], path.duration());
-        for i in 0..K {
-            prop_assert_eq!(path.position(t[i]), p[i]);
-            prop_assert_eq!(path.velocity(t[i]), 0.0);
-        }
-        for k in 0..=5000 {
-            let tk = path.duration() * k as f64 / 5000.0;
-            prop_assert!(path.velocity(tk).abs() <= v_max * (1.0 + 1e-12));
-            prop_assert!(path.acceleration(tk).abs() <= a_max * (1.0 + 1e-12));
-        }
+        check_stop_at_vias(p, v_max, a_max)?;
     }
 
     #[test]
     fn through_vias_is_continuous(p in points(), t in times()) {
-        let path = ThroughVias::new(p, t).unwrap();
-        let v = *path.via_velocities();
-        prop_assert_eq!(v, heuristic_via_velocities(&p, &t));
-        prop_assert_eq!(v[0], 0.0);
-        prop_assert_eq!(v[K - 1], 0.0);
-        let scale = 1.0 + p.iter().map(|x| x.abs()).fold(0.0, f64::max);
-        for i in 0..K {
-            // Exactly the via point and via velocity at each join (right side) ...
-            prop_assert_eq!(path.position(t[i]), p[i]);
-            if i < K - 1 {
-                prop_assert_eq!(path.velocity(t[i]), v[i]);
-            }
-            // ... and the segment that ends there arrives with the same values.
-            if i > 0 {
-                let seg = path.segment(i - 1).unwrap();
-                let end = seg.duration();
-                prop_assert!((seg.position(end) - p[i]).abs() <= 1e-12 * scale);
-                prop_assert!((seg.velocity(end) - v[i]).abs() <= 1e-12 * scale / (t[i] - t[i - 1]));
-            }
-        }
-        // Continuity seen through the whole profile: tiny steps across each join.
-        let h = 1e-9;
-        for &ti in &t[1..K - 1] {
-            prop_assert!((path.position(ti + h) - path.position(ti - h)).abs() <= 1e-6 * scale);
-            prop_assert!((path.velocity(ti + h) - path.velocity(ti - h)).abs() <= 1e-6 * scale);
-        }
+        check_through_vias(p, t)?;
     }
 
     #[test]
@@ -116,6 +214,34 @@ proptest! {
     }
 }
 
+/// The steep path that made `through_vias_is_continuous` fail in about 1.5 % of runs
+/// under random seeds (issue 17): 10 rad across a 0.1 s gap, q̈ ≈ 6·10³ rad/s² at the
+/// join, where the old fixed bound `1e-6·scale` on Δq̇ over ±1 ns allowed only ~10³.
+#[test]
+fn steep_through_vias_stays_continuous() {
+    let (p, t) = ([0.0, -5.0, 5.0, -5.0, 0.0], [0.0, 1.0, 1.1, 1.2, 2.0]);
+    let path = ThroughVias::new(p, t).unwrap();
+    let a = path.acceleration(1.1).abs();
+    assert!(a > 1e3 * (1.0 + 5.0), "not steep enough: {a}");
+    check_through_vias(p, t).unwrap();
+}
+
+/// Cases proptest once found (formerly `trajectory_multi_segment.proptest-regressions`),
+/// kept as plain cases through every property that takes them.
+#[test]
+fn former_regressions() {
+    let p = [
+        0.0,
+        -1.6828000639749223,
+        0.0,
+        -2.349653163322004,
+        -2.2771775416617634,
+    ];
+    let (v_max, a_max) = (1.4447522569551252, 32.15626565241403);
+    check_stop_at_vias(p, v_max, a_max).unwrap();
+    check_through_vias_with_limits(p, v_max, a_max).unwrap();
+}
+
 /// Largest |q̇| and |q̈| over a dense sampling of the whole path.
 fn sampled_peaks<P: Profile>(path: &P) -> (f64, f64) {
     let (mut v, mut a) = (0.0f64, 0.0f64);
@@ -127,28 +253,37 @@ fn sampled_peaks<P: Profile>(path: &P) -> (f64, f64) {
     (v, a)
 }
 
+/// A path through vias timed by the limits stays within them and reaches the tighter one.
+fn check_through_vias_with_limits(
+    p: [f64; K],
+    v_max: f64,
+    a_max: f64,
+) -> Result<(), TestCaseError> {
+    let path = ThroughVias::with_limits(p, v_max, a_max).unwrap();
+    let t = *path.arrival_times();
+    for i in 0..K {
+        prop_assert_eq!(path.position(t[i]), p[i]);
+    }
+    let ((pv, _), (pa, _)) = path.peaks();
+    let (sv, sa) = sampled_peaks(&path);
+    // The exact peaks bound the sampled ones, and both are within the limits ...
+    prop_assert!(sv <= pv * (1.0 + 1e-12) && sa <= pa * (1.0 + 1e-12));
+    prop_assert!(
+        pv <= v_max && pa <= a_max,
+        "{pv} > {v_max} or {pa} > {a_max}"
+    );
+    // ... and the tighter limit is reached: no slower than the scaling needs.
+    prop_assert!((pv / v_max).max(pa / a_max) >= 1.0 - 1e-9);
+    check_continuous_at_joins(&path)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(fixed_seed(64))]
 
     #[test]
     fn through_vias_with_limits_respects_them(p in points(), v_max in 0.1..5.0_f64, a_max in 0.1..50.0_f64) {
         prop_assume!(p.windows(2).all(|w| (w[1] - w[0]).abs() > 1e-6));
-        let path = ThroughVias::with_limits(p, v_max, a_max).unwrap();
-        let t = *path.arrival_times();
-        for i in 0..K {
-            prop_assert_eq!(path.position(t[i]), p[i]);
-        }
-        let ((pv, _), (pa, _)) = path.peaks();
-        let (sv, sa) = sampled_peaks(&path);
-        // The exact peaks bound the sampled ones, and both are within the limits ...
-        prop_assert!(sv <= pv * (1.0 + 1e-12) && sa <= pa * (1.0 + 1e-12));
-        prop_assert!(pv <= v_max && pa <= a_max, "{pv} > {v_max} or {pa} > {a_max}");
-        // ... and the tighter limit is reached: no slower than the scaling needs.
-        prop_assert!((pv / v_max).max(pa / a_max) >= 1.0 - 1e-9);
-        // Velocity stays continuous through the via points.
-        for &ti in &t[1..K - 1] {
-            prop_assert!((path.velocity(ti + 1e-9) - path.velocity(ti - 1e-9)).abs() <= 1e-6 * (1.0 + pa));
-        }
+        check_through_vias_with_limits(p, v_max, a_max)?;
     }
 
     #[test]

@@ -2,6 +2,9 @@
 
 use kinegen::trajectory::{Cubic, Profile, Quintic, TrajectoryError};
 use proptest::prelude::*;
+#[path = "../kinegen-core/tests/common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 fn pos() -> impl Strategy<Value = f64> {
     -10.0..10.0_f64
@@ -62,6 +65,8 @@ fn assert_derivatives<P: Profile>(p: &P) {
 }
 
 proptest! {
+    #![proptest_config(fixed_seed(256))]
+
     #[test]
     fn cubic_boundaries(q0 in pos(), q1 in pos(), v0 in vel(), v1 in vel(), t in dur()) {
         let c = Cubic::new(q0, q1, v0, v1, t).unwrap();

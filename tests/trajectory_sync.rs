@@ -2,6 +2,9 @@
 
 use kinegen::trajectory::{Profile, Stretch, Synchronized, TrajectoryError, Trapezoid};
 use proptest::prelude::*;
+#[path = "../kinegen-core/tests/common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 const N: usize = 6;
 
@@ -16,6 +19,8 @@ fn joints() -> impl Strategy<Value = ([f64; N], [f64; N], [f64; N], [f64; N], bo
 }
 
 proptest! {
+    #![proptest_config(fixed_seed(256))]
+
     #[test]
     fn all_joints_finish_together_within_limits((q0, q1, v_max, a_max, keep_v) in joints()) {
         let stretch = if keep_v { Stretch::KeepVelocity } else { Stretch::KeepAcceleration };

@@ -2,6 +2,9 @@
 
 use kinegen::trajectory::{Profile, Stretch, TrajectoryError, Trapezoid};
 use proptest::prelude::*;
+#[path = "../kinegen-core/tests/common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 /// Relative slack for "within the limit": profiles derive v and a from the timing, so a
 /// limit can be exceeded by a few ulps, never more.
@@ -87,6 +90,8 @@ fn assert_derivatives(p: &Trapezoid) {
 }
 
 proptest! {
+    #![proptest_config(fixed_seed(256))]
+
     #[test]
     fn fastest_profile_meets_boundaries_and_limits(
         q0 in pos(), q1 in pos(), v_max in vel_limit(), a_max in acc_limit()

@@ -72,10 +72,16 @@ pub fn determinants(chain: &Chain, derived: &Derived) -> Determinants {
             // The 6×6 world Jacobian, or the square task Jacobian (its rows).
             let full = rows.len() == 6 && rows == (0..6).collect::<Vec<_>>();
             let task_square = chain.task.as_ref().is_some_and(|t| t.len() == chain.dof());
+            // What a missing full det J says when only the task rows are square.
+            let missing = if full {
+                String::new()
+            } else {
+                "not available: the 6×N Jacobian is not square (see manipulability)".into()
+            };
             Determinants {
                 det: full.then(|| det.clone()),
                 det_task: task_square.then_some(det),
-                missing: String::new(),
+                missing,
             }
         }
         Some(Err(why)) => Determinants {

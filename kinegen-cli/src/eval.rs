@@ -66,8 +66,15 @@ pub struct Values {
     pub det: Option<f64>,
     /// det of the task Jacobian, where the engine has it.
     pub det_task: Option<f64>,
-    /// Yoshikawa's √det(J Jᵀ) of the task Jacobian if there is one, else of J.
+    /// Yoshikawa's `√det(J Jᵀ)` of the full 6×N Jacobian (0 for N < 6: it cannot move
+    /// in all six directions) — the Robotics Toolbox's `manipulability(q)`.
     pub manipulability: f64,
+    /// `√det(Jt Jtᵀ)` of the task Jacobian, if the robot has task rows.
+    pub manipulability_task: Option<f64>,
+    /// Of the linear rows `[vx vy vz]` (`axes="trans"`).
+    pub manipulability_trans: f64,
+    /// Of the angular rows `[ωx ωy ωz]` (`axes="rot"`).
+    pub manipulability_rot: f64,
     /// The second-order values.
     pub second: SecondOrderValues,
 }
@@ -83,11 +90,17 @@ pub struct SecondOrderValues {
     pub jdot_qdot: Option<Vec<f64>>,
     /// `∂det/∂q` where the engine has the closed-form determinant.
     pub det_gradient: Option<Vec<f64>>,
-    /// `∂m/∂q` of Yoshikawa's manipulability of the full 6×N Jacobian (`√det(Jᵀ J)` for
-    /// fewer than six joints).
+    /// `∂m/∂q` of [`Values::manipulability`] (the full 6×N Jacobian; 0 for N < 6, where
+    /// that is identically 0).
     pub manipulability_gradient: Vec<f64>,
-    /// `∂m/∂q` of the task Jacobian's manipulability, with task rows.
+    /// `∂m/∂q` of [`Values::manipulability_task`], with task rows.
     pub manipulability_task_gradient: Option<Vec<f64>>,
+}
+
+/// Yoshikawa's manipulability of the given rows (see [`kinegen_core::numeric::manipulability`]).
+fn manipulability(rows: &[Vec<f64>], dof: usize) -> f64 {
+    let m = nalgebra::DMatrix::from_fn(rows.len(), dof, |r, c| rows[r][c]);
+    kinegen_core::numeric::manipulability(&m)
 }
 
 fn rows(model: &Model, chain: &Chain, q: &[f64], rows: &[Vec<Id>]) -> Vec<Vec<f64>> {
@@ -119,15 +132,15 @@ pub fn values(
     let one = |d: &Option<crate::det_hook::Determinant>| {
         d.as_ref().map(|d| model.eval(chain, q, &[d.node])[0])
     };
-    // Task rows when the robot names them: a planar arm's 6×N J has rank ≤ 3, so
-    // √det(J Jᵀ) of the full J would be 0 everywhere.
-    let m = task_jacobian.as_ref().unwrap_or(&jacobian);
-    let dm = nalgebra::DMatrix::from_fn(m.len(), chain.dof(), |r, c| m[r][c]);
+    let n = chain.dof();
     Values {
         fk,
         det: one(&dets.det),
         det_task: one(&dets.det_task),
-        manipulability: kinegen_core::numeric::manipulability(&dm),
+        manipulability: manipulability(&jacobian, n),
+        manipulability_task: task_jacobian.as_ref().map(|t| manipulability(t, n)),
+        manipulability_trans: manipulability(&jacobian[..3], n),
+        manipulability_rot: manipulability(&jacobian[3..], n),
         second: second_order(chain, derived, q, qd, &jacobian),
         jacobian,
         jacobian_ee,
@@ -179,10 +192,10 @@ fn second_order(
 }
 
 /// The JSON object: `{"fk", "jacobian", "jacobian_ee", "det", "task_jacobian",
-/// "det_task", "manipulability", "hessian", "jacobian_dot", "jdot_qdot", "det_gradient",
-/// "manipulability_gradient", "manipulability_task_gradient"}` (`jacobian_dot` and
-/// `jdot_qdot` null without `--qd`, the gradients null where there is nothing to
-/// differentiate).
+/// "det_task", "manipulability", "manipulability_task", "manipulability_trans",
+/// "manipulability_rot", "hessian", "jacobian_dot", "jdot_qdot", "det_gradient",
+/// "manipulability_gradient", "manipulability_task_gradient"}` (`null` where a value
+/// does not exist; `jacobian_dot` and `jdot_qdot` without `--qd`).
 pub fn to_json(v: &Values) -> Value {
     let s = &v.second;
     json!({
@@ -193,6 +206,9 @@ pub fn to_json(v: &Values) -> Value {
         "task_jacobian": v.task_jacobian,
         "det_task": v.det_task,
         "manipulability": v.manipulability,
+        "manipulability_task": v.manipulability_task,
+        "manipulability_trans": v.manipulability_trans,
+        "manipulability_rot": v.manipulability_rot,
         "hessian": s.hessian,
         "jacobian_dot": s.jacobian_dot,
         "jdot_qdot": s.jdot_qdot,
@@ -224,9 +240,15 @@ pub fn to_table(chain: &Chain, q: &[f64], v: &Values, missing: &str) -> String {
     }
     s.push('\n');
     let det = |d: Option<f64>| d.map_or(missing.to_string(), |x| format!("{x:.12}"));
-    let _ = writeln!(s, "det J          {}", det(v.det));
-    let _ = writeln!(s, "det J_task     {}", det(v.det_task));
-    let _ = writeln!(s, "manipulability {:.12}", v.manipulability);
+    let _ = writeln!(s, "det J                  {}", det(v.det));
+    let _ = writeln!(s, "det J_task             {}", det(v.det_task));
+    let _ = writeln!(s, "\nmanipulability √det(J Jᵀ), Yoshikawa:");
+    let _ = writeln!(s, "  all rows (J)         {:.12}", v.manipulability);
+    if let Some(w) = v.manipulability_task {
+        let _ = writeln!(s, "  task rows (J_task)   {w:.12}");
+    }
+    let _ = writeln!(s, "  trans [vx vy vz]     {:.12}", v.manipulability_trans);
+    let _ = writeln!(s, "  rot [ωx ωy ωz]       {:.12}", v.manipulability_rot);
     second_order_table(&mut s, chain, &v.second, missing);
     s
 }

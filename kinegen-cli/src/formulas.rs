@@ -27,8 +27,13 @@ pub enum What {
     Det,
     /// Where the determinant vanishes.
     Singularities,
-    /// Everything.
+    /// Every formula section above.
     All,
+    /// The chain as the engine reads it (elementary transforms), the description's
+    /// table, and every value snapped with the error bound it implies.
+    Model,
+    /// The closed-form IK family and its derivation (which subproblem gives which joint).
+    Ik,
 }
 
 /// One named formula: `lhs = meaning = rhs` (the meaning, when known, in words of

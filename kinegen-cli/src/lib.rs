@@ -1,11 +1,15 @@
 //! The `kinegen` command: a robot's closed-form kinematics for people and tools.
 //!
-//! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all] [--latex]`
+//! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all|model] [--latex]`
 //! - `kinegen rust ROBOT` — the code `kinematics!` generates, pretty-printed
 //! - `kinegen eval ROBOT --q 0.1,0.2,… [--qd 0.3,…] [--json]`
 //! - `kinegen stats ROBOT [--json]`
+//! - `kinegen ik ROBOT --pose m00,…,m33 [--near q1,…] [--json]` or `--poses FILE.json
+//!   [--near FILE.json]` — every closed-form IK solution
 //!
-//! ROBOT is a TOML file (`robots/ur5.toml`) or the name of a shipped robot (`ur5`).
+//! ROBOT is a TOML file (`robots/ur5.toml`), a URDF file (`arm.urdf`, with `--base`,
+//! `--tip`, `--snap`; without them the root link and the only leaf) or the name of a
+//! shipped robot (`ur5`).
 //! Every command is a thin caller of `kinegen_core`; [`run`] returns the text to print,
 //! so it is testable without a process.
 
@@ -13,6 +17,8 @@ pub mod det_hook;
 pub mod error;
 pub mod eval;
 pub mod formulas;
+pub mod ik;
+pub mod model;
 pub mod robots;
 pub mod stats;
 
@@ -21,6 +27,7 @@ use kinegen_core::{derive, generate, ItemHeader};
 
 pub use error::CliError;
 pub use formulas::What;
+pub use robots::UrdfArgs;
 
 /// Closed-form robot kinematics from DH tables.
 #[derive(Debug, Parser)]
@@ -36,8 +43,11 @@ pub struct Cli {
 pub enum Command {
     /// Show the closed forms (terminal text, or a LaTeX document body).
     Show {
-        /// A TOML file, or a shipped robot's name (ur5, puma560, planar_rr, …).
+        /// A TOML or URDF file, or a shipped robot's name (ur5, puma560, planar_rr, …).
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
         /// Which outputs.
         #[arg(long, value_enum, default_value = "all")]
         what: What,
@@ -47,13 +57,19 @@ pub enum Command {
     },
     /// Print the Rust code `kinematics!` generates for the robot (`pub struct <Name>`).
     Rust {
-        /// A TOML file, or a shipped robot's name.
+        /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
     },
     /// Evaluate the generated formulas at a configuration.
     Eval {
-        /// A TOML file, or a shipped robot's name.
+        /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
         /// Joint values, comma-separated (radians / metres), one per joint.
         #[arg(long, allow_hyphen_values = true)]
         q: String,
@@ -67,8 +83,35 @@ pub enum Command {
     },
     /// Operation counts of the generated code and the engine's time.
     Stats {
-        /// A TOML file, or a shipped robot's name.
+        /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Every closed-form inverse-kinematics solution of a pose (or of a file of poses).
+    Ik {
+        /// A TOML or URDF file, or a shipped robot's name.
+        robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
+        /// The pose: 16 numbers, row-major 4×4 (`m00,m01,…,m33`).
+        #[arg(long, allow_hyphen_values = true, conflicts_with = "poses")]
+        pose: Option<String>,
+        /// A JSON file holding an array of 4×4 poses (arrays of 4 rows of 4 numbers).
+        #[arg(long)]
+        poses: Option<std::path::PathBuf>,
+        /// The current configuration: with `--pose`, `q1,…,qN`; with `--poses`, a JSON
+        /// file of one joint vector per pose. Adds `near`, the answer of `ik_near`.
+        #[arg(long, allow_hyphen_values = true)]
+        near: Option<String>,
+        /// For a 7-joint arm: the locked joint's value (else taken from `--near`).
+        #[arg(long, allow_hyphen_values = true)]
+        locked: Option<f64>,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -78,19 +121,36 @@ pub enum Command {
 /// Run a parsed command; `Ok` is the text for stdout.
 pub fn run(cli: &Cli) -> Result<String, CliError> {
     match &cli.command {
-        Command::Show { robot, what, latex } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Show {
+            robot,
+            urdf,
+            what,
+            latex,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
+            if *what == What::Model {
+                return Ok(model::show(&chain));
+            }
             let derived = derive(&chain, &options);
+            if *what == What::Ik {
+                return Ok(ik::show(&chain, &derived));
+            }
             let dets = det_hook::determinants(&chain, &derived);
             Ok(formulas::show(&chain, &derived.model, &dets, *what, *latex))
         }
-        Command::Rust { robot } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Rust { robot, urdf } => {
+            let (chain, options) = robots::load(robot, urdf)?;
             // Exactly the macro's call for `pub struct <Name>` (kinegen-macro's expand).
             Ok(generate(&chain, &ItemHeader::public(&chain.name), &options).pretty())
         }
-        Command::Eval { robot, q, qd, json } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Eval {
+            robot,
+            urdf,
+            q,
+            qd,
+            json,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
             let q = eval::parse_q(q, chain.dof())?;
             let qd = qd
                 .as_ref()
@@ -105,8 +165,8 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 eval::to_table(&chain, &q, &v, &dets.missing)
             })
         }
-        Command::Stats { robot, json } => {
-            let (chain, options) = robots::load(robot)?;
+        Command::Stats { robot, urdf, json } => {
+            let (chain, options) = robots::load(robot, urdf)?;
             let t = std::time::Instant::now();
             let generated = generate(&chain, &ItemHeader::public(&chain.name), &options);
             let time_ms = t.elapsed().as_secs_f64() * 1e3;
@@ -118,6 +178,26 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             } else {
                 stats::to_table(&chain, &s, &dets.missing)
             })
+        }
+        Command::Ik {
+            robot,
+            urdf,
+            pose,
+            poses,
+            near,
+            locked,
+            json,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
+            let derived = derive(&chain, &options);
+            let request = ik::Request {
+                pose: pose.as_deref(),
+                poses: poses.as_deref(),
+                near: near.as_deref(),
+                locked: *locked,
+                json: *json,
+            };
+            ik::run(&chain, &derived, &request)
         }
     }
 }

@@ -56,6 +56,16 @@ fn show_ur5() {
     insta::assert_snapshot!("show_ur5", stdout(&["show", "ur5"]));
 }
 
+/// The readable `eval` table, manipulability section included (12 decimals: the same on
+/// every platform's libm).
+#[test]
+fn eval_table_planar_rr() {
+    insta::assert_snapshot!(
+        "eval_planar_rr",
+        stdout(&["eval", "planar_rr", "--q", "0.3,0.5"])
+    );
+}
+
 #[test]
 fn show_latex_planar_rr() {
     insta::assert_snapshot!(
@@ -151,10 +161,17 @@ fn assert_close(
     }
 }
 
+/// Yoshikawa's `√det(M Mᵀ)` of the rows `rows` of the reference Jacobian `j`.
+fn reference_manipulability(j: &nalgebra::DMatrix<f64>, rows: &[usize]) -> f64 {
+    let m = nalgebra::DMatrix::from_fn(rows.len(), j.ncols(), |r, c| j[(rows[r], c)]);
+    numeric::manipulability(&m)
+}
+
 #[test]
 fn eval_json_matches_the_numeric_reference() {
-    let cases: [(&str, &[f64]); 4] = [
+    let cases: [(&str, &[f64]); 5] = [
         ("planar_rr", &[0.3, -1.1]),
+        ("planar_rrr", &[0.3, -1.1, 0.7]),
         ("ur5", &[0.1, -0.7, 1.3, 0.4, -2.2, 0.9]),
         ("puma560", &[0.2, 0.3, -0.4, 1.0, 0.6, -1.5]),
         ("scara", &[0.5, -0.4, 0.1, 0.7]),
@@ -172,33 +189,26 @@ fn eval_json_matches_the_numeric_reference() {
         assert_close(name, &matrix(&v["jacobian"]), |r, c| j[(r, c)], 6, n);
         let je = reference.jacobian_ee(q).unwrap();
         assert_close(name, &matrix(&v["jacobian_ee"]), |r, c| je[(r, c)], 6, n);
-        let m = if robot.task.is_some() {
+        let jt = robot.task.as_ref().map(|_| {
             let jt = reference.task_jacobian(q).unwrap();
-            assert_close(
-                name,
-                &matrix(&v["task_jacobian"]),
-                |r, c| jt[(r, c)],
-                jt.nrows(),
-                n,
-            );
+            let got = matrix(&v["task_jacobian"]);
+            assert_close(name, &got, |r, c| jt[(r, c)], jt.nrows(), n);
             jt
-        } else {
+        });
+        if jt.is_none() {
             assert!(v["task_jacobian"].is_null(), "{name}");
-            nalgebra::DMatrix::from_fn(6, n, |r, c| j[(r, c)])
-        };
-        let w = v["manipulability"].as_f64().unwrap();
-        assert!(
-            (w - numeric::manipulability(&m)).abs() < 1e-12,
-            "{name}: {w}"
+        }
+        check_manipulability(
+            name,
+            &v,
+            &nalgebra::DMatrix::from_fn(6, n, |r, c| j[(r, c)]),
+            jt.as_ref(),
         );
         // Null until the engine has the determinant (kinegen-cli/src/det_hook.rs);
         // once it does, it must agree with the reference.
         for (key, reference_det) in [
             ("det", (n == 6).then(|| numeric::det6(&j).unwrap())),
-            (
-                "det_task",
-                robot.task.as_ref().and_then(|_| numeric::det(&m).ok()),
-            ),
+            ("det_task", jt.as_ref().and_then(|m| numeric::det(m).ok())),
         ] {
             if let (Some(got), Some(want)) = (v[key].as_f64(), reference_det) {
                 assert!((got - want).abs() < 1e-12, "{name} {key}: {got} vs {want}");
@@ -209,14 +219,58 @@ fn eval_json_matches_the_numeric_reference() {
     }
 }
 
+/// The four manipulability fields against the reference Jacobian's rows (the Robotics
+/// Toolbox's `axes`: all, trans, rot; and the task rows). Fewer joints than rows means 0,
+/// exactly: a planar arm's full Jacobian cannot move in six directions.
+fn check_manipulability(
+    name: &str,
+    v: &Value,
+    j: &nalgebra::DMatrix<f64>,
+    jt: Option<&nalgebra::DMatrix<f64>>,
+) {
+    let n = j.ncols();
+    for (key, rows) in [
+        ("manipulability", &[0, 1, 2, 3, 4, 5][..]),
+        ("manipulability_trans", &[0, 1, 2][..]),
+        ("manipulability_rot", &[3, 4, 5][..]),
+    ] {
+        let got = v[key].as_f64().unwrap();
+        let want = reference_manipulability(j, rows);
+        if rows.len() > n {
+            assert_eq!(got, 0.0, "{name} {key}");
+        }
+        assert!(
+            (got - want).abs() < 1e-12,
+            "{name} {key}: {got} vs reference {want}"
+        );
+    }
+    match jt {
+        Some(jt) => {
+            let got = v["manipulability_task"].as_f64().unwrap();
+            let want = numeric::manipulability(jt);
+            assert!(want > 1e-3, "{name}: a regular pose expected");
+            assert!(
+                (got - want).abs() < 1e-12,
+                "{name} task: {got} vs reference {want}"
+            );
+        }
+        None => assert!(v["manipulability_task"].is_null(), "{name}"),
+    }
+}
+
 #[test]
 fn eval_planar_rr_by_hand() {
-    // x = L1 c1 + L2 c12 with L1 = L2 = 1; √det(Jt Jtᵀ) = |det Jt| = L1 L2 |s2|.
+    // x = L1 c1 + L2 c12 with L1 = L2 = 1; √det(Jt Jtᵀ) = |det Jt| = L1 L2 |s2| for the
+    // task rows [x, y]; the full 6×2 J, and its 3×2 linear and angular blocks, give 0.
     let v: Value =
         serde_json::from_str(&stdout(&["eval", "planar_rr", "--q", "0.3,0.5", "--json"])).unwrap();
     let x = v["fk"][0][3].as_f64().unwrap();
     assert!((x - (0.3f64.cos() + 0.8f64.cos())).abs() < 1e-15);
-    assert!((v["manipulability"].as_f64().unwrap() - 0.5f64.sin()).abs() < 1e-14);
+    let w = |key: &str| v[key].as_f64().unwrap();
+    assert!((w("manipulability_task") - 0.5f64.sin()).abs() < 1e-14);
+    assert_eq!(w("manipulability"), 0.0);
+    assert_eq!(w("manipulability_trans"), 0.0);
+    assert_eq!(w("manipulability_rot"), 0.0);
     let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
     assert_eq!(
         keys,
@@ -228,6 +282,9 @@ fn eval_planar_rr_by_hand() {
             "task_jacobian",
             "det_task",
             "manipulability",
+            "manipulability_task",
+            "manipulability_trans",
+            "manipulability_rot",
             "hessian",
             "jacobian_dot",
             "jdot_qdot",
@@ -242,6 +299,33 @@ fn eval_planar_rr_by_hand() {
     let g = v["det_gradient"].as_array().unwrap();
     assert_eq!(g[0].as_f64(), Some(0.0));
     assert!((g[1].as_f64().unwrap() - 0.5f64.cos()).abs() < 1e-15);
+    // Planar RRR, task [x, y, rz]: |det Jt| = a1 a2 |s2| = 3.5² |sin 0.5|.
+    let v: Value = serde_json::from_str(&stdout(&[
+        "eval",
+        "planar_rrr",
+        "--q",
+        "0.3,0.5,-0.2",
+        "--json",
+    ]))
+    .unwrap();
+    let want = 3.5 * 3.5 * 0.5f64.sin();
+    assert!((v["manipulability_task"].as_f64().unwrap() - want).abs() < 1e-12);
+    assert_eq!(v["manipulability"].as_f64().unwrap(), 0.0);
+    // UR5: square, so √det(J Jᵀ) = |det J|; no task rows.
+    let v: Value = serde_json::from_str(&stdout(&[
+        "eval",
+        "ur5",
+        "--q",
+        "0.1,-0.7,1.3,0.4,-2.2,0.9",
+        "--json",
+    ]))
+    .unwrap();
+    let (w, det) = (
+        v["manipulability"].as_f64().unwrap(),
+        v["det"].as_f64().unwrap(),
+    );
+    assert!((w - det.abs()).abs() < 1e-12, "{w} vs |{det}|");
+    assert!(v["manipulability_task"].is_null());
 }
 
 /// `--qd` adds `jacobian_dot` and `jdot_qdot`; every second-order value equals the
@@ -338,7 +422,8 @@ fn eval_table_is_readable() {
     let t = stdout(&["eval", "planar_rr", "--q", "0.3,0.5"]);
     assert!(t.starts_with("planar RR at q = [0.3, 0.5]"), "{t}");
     assert!(t.contains("   vx    -1.012876    -0.717356"), "{t}");
-    assert!(t.contains("manipulability 0.479425538604"), "{t}");
+    assert!(t.contains("  all rows (J)         0.000000000000"), "{t}");
+    assert!(t.contains("  task rows (J_task)   0.479425538604"), "{t}");
 }
 
 #[test]

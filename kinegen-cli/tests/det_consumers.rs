@@ -11,7 +11,7 @@ use kinegen_core::{generate, numeric, Derived, ItemHeader};
 
 #[test]
 fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
-    let (chain, options) = robots::load("planar_rr").unwrap();
+    let (chain, options) = robots::load("planar_rr", &Default::default()).unwrap();
     // The model without the engine's own determinant, so the hand-built one is new.
     let mut model = order::build(&chain, &options);
     let t = model.task.clone();
@@ -45,6 +45,7 @@ fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
         det: None,
         second,
         det_gradient: None,
+        ik: None,
     };
     let v = eval::values(&chain, &derived, &dets, &q, None);
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/planar_rr.toml");

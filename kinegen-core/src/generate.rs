@@ -14,9 +14,11 @@ use crate::emit::rust::{item, ItemHeader};
 use crate::kinematics::det::closed_form::{self, DetModel};
 use crate::kinematics::det::gradient::{det_gradient, DetGradient};
 use crate::kinematics::det::structural::square_rows;
+use crate::kinematics::ik::{self, IkModel};
 use crate::kinematics::model::Model;
 use crate::kinematics::second_order::{second_order, SecondOrder};
 use crate::model::options::{Deadline, Options};
+use crate::model::robot::Scalar;
 use crate::simplify::order::cheapest;
 use crate::simplify::pass::simplify_second_order;
 
@@ -56,6 +58,9 @@ pub struct Derived {
     /// The gradient of the closed-form determinant and of its factors (`None`: no closed
     /// form; `Err`: why not).
     pub det_gradient: Option<Result<DetGradient, String>>,
+    /// Closed-form IK (`Err`: why no family fits; `None`: not attempted — f32 robots,
+    /// whose runtime solvers are f64 only).
+    pub ik: Option<Result<IkModel, String>>,
 }
 
 /// Generate the Rust item for a chain, within `options.budget` (its `time_ms` counts
@@ -79,6 +84,7 @@ pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Genera
         &derived.det,
         &derived.second,
         &derived.det_gradient,
+        &derived.ik,
     );
     // Printed, and parsed into tokens.
     let tokens = item(chain, header, &functions);
@@ -108,10 +114,13 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
         Some(Ok(d)) => Some(det_gradient(&mut model, d, chain.dof())),
         _ => None,
     };
+    // The IK family, decided exactly from the axes at q = 0, and its geometry.
+    let ik = (chain.scalar == Scalar::F64).then(|| ik::model(chain, options.budget.max_terms()));
     Derived {
         model,
         det,
         second,
         det_gradient,
+        ik,
     }
 }

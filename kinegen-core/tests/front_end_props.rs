@@ -9,6 +9,9 @@ mod check;
 
 use check::Outcome;
 use proptest::prelude::*;
+#[path = "common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 const Q: [f64; 8] = [0.3, -1.1, 0.7, 2.0, -0.4, 1.3, 0.2, -2.5];
 
@@ -126,7 +129,7 @@ fn apply(src: &str, mutations: &[Mutation]) -> String {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(fixed_seed(256))]
     #[test]
     fn arbitrary_text_never_panics(src in "\\PC{0,200}") {
         check::toml(&src, &Q);
@@ -143,13 +146,12 @@ proptest! {
 /// both outcomes must occur (or the property tests nothing).
 #[test]
 fn mutated_robot_files_load_or_fail_cleanly_and_generate_correct_code() {
-    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    use proptest::test_runner::TestRunner;
     use std::cell::Cell;
     let seeds = seeds();
     let (checked, rejected) = (Cell::new(0), Cell::new(0));
-    // A fixed seed: the same 48 files every run, so the counts below are stable.
-    let rng = TestRng::deterministic_rng(RngAlgorithm::ChaCha);
-    let mut runner = TestRunner::new_with_rng(Config::with_cases(48), rng);
+    // The fixed seed: the same 48 files every run, so the counts below are stable.
+    let mut runner = TestRunner::new(fixed_seed(48));
     runner
         .run(
             &(0..seeds.len(), prop::collection::vec(mutation(), 1..4)),

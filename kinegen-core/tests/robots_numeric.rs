@@ -8,7 +8,10 @@ use common::robot_files;
 use kinegen_core::front::toml_file::load_file;
 use kinegen_core::numeric::NumericRobot;
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestRunner};
+use proptest::test_runner::TestRunner;
+#[path = "common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 /// A `# home: q = [...], position = [...]` line (see robots/README.md).
 #[derive(Debug)]
@@ -65,6 +68,7 @@ fn all_expected_robots_are_present() {
         "abb_irb140",
         "scara",
         "cylindrical_rpp",
+        "kinova_jaco",
     ] {
         assert!(
             names.iter().any(|n| n == want),
@@ -139,7 +143,7 @@ fn jacobians_agree_within_the_joint_limits() {
             })
             .collect();
         let strategy = proptest::collection::vec(0.0..1.0f64, ranges.len());
-        let mut runner = TestRunner::new(Config::with_cases(64));
+        let mut runner = TestRunner::new(fixed_seed(64));
         let result = runner.run(&strategy, |u| {
             let q: Vec<f64> = u
                 .iter()

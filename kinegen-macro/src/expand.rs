@@ -7,16 +7,19 @@ use kinegen_core::front::toml_file::RawFile;
 use kinegen_core::model::input;
 use kinegen_core::model::raw::{DhError, Path, PathSeg, RawRobot};
 use kinegen_core::model::validate::validate;
-use kinegen_core::{Budget, ItemHeader, Options};
-use proc_macro2::TokenStream;
+use kinegen_core::{Budget, Chain, ItemHeader, Options};
+use proc_macro2::{Span, TokenStream};
 use quote::quote;
-use syn::LitStr;
+use syn::{Attribute, Ident, LitStr, Visibility};
 
 use crate::parse::Input;
 use crate::report;
 
 /// The generated item, or every error found.
 pub fn expand(input: Input) -> syn::Result<TokenStream> {
+    if input.urdf.is_some() {
+        return crate::urdf::expand(input);
+    }
     let Input {
         attrs,
         vis,
@@ -27,6 +30,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         keys,
         spans,
         shape_errors,
+        ..
     } = input;
     let mut budget = budget;
     let mut from_file = None;
@@ -34,13 +38,36 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
     if let Some(lit) = &file {
         let (path, src) = read(lit)?;
         let parsed = RawFile::parse(&src, &lit.value()).map_err(|e| file_error(lit, e))?;
+        if let Some((urdf, options)) = &parsed.urdf {
+            let from_toml = crate::urdf::FromToml {
+                toml: lit,
+                toml_path: &path,
+                file: &parsed,
+                urdf,
+                options,
+            };
+            return crate::urdf::expand_toml(
+                from_toml,
+                Input {
+                    attrs,
+                    vis,
+                    ident,
+                    file: file.clone(),
+                    urdf: None,
+                    snap: None,
+                    robot: raw,
+                    budget,
+                    keys,
+                    spans,
+                    shape_errors,
+                },
+            );
+        }
         raw = merge(parsed.robot.clone(), raw, &keys);
         if !keys.iter().any(|k| k == "budget") {
             budget = parsed.budget;
         }
-        let abs = path.to_string_lossy().into_owned();
-        // Makes cargo rebuild the crate when the file changes.
-        rebuild_on_change = quote! { const _: &str = ::core::include_str!(#abs); };
+        rebuild_on_change = track(&path);
         from_file = Some(parsed);
     }
     if raw.name.is_none() {
@@ -82,16 +109,33 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         Err(_) => return Err(syn::Error::new(ident.span(), "invalid robot")),
     };
 
+    Ok(emit(
+        &robot.chain(),
+        (attrs, vis, ident),
+        budget,
+        note_span,
+        rebuild_on_change,
+    ))
+}
+
+/// The item for `chain`, the notes as warnings at `note_span`, and `extra` tokens.
+pub fn emit(
+    chain: &Chain,
+    (attrs, vis, ident): (Vec<Attribute>, Visibility, Ident),
+    budget: Option<Budget>,
+    note_span: Span,
+    extra: TokenStream,
+) -> TokenStream {
     let header = ItemHeader {
         attrs: quote! { #(#attrs)* },
         vis: quote! { #vis },
         ident,
     };
     let options = Options {
-        budget: budget.unwrap_or_else(Budget::default),
+        budget: budget.unwrap_or_default(),
         ..Options::default()
     };
-    let generated = kinegen_core::generate(&robot.chain(), &header, &options);
+    let generated = kinegen_core::generate(chain, &header, &options);
     let tokens = generated.tokens;
     let warnings = crate::warnings::warnings(
         &generated.notes,
@@ -99,11 +143,17 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         note_span,
         &attrs,
     );
-    Ok(quote! { #tokens #rebuild_on_change #warnings })
+    quote! { #tokens #extra #warnings }
+}
+
+/// `const _: &str = include_str!(path);`: cargo rebuilds the crate when the file changes.
+pub fn track(path: &std::path::Path) -> TokenStream {
+    let abs = path.to_string_lossy().into_owned();
+    quote! { const _: &str = ::core::include_str!(#abs); }
 }
 
 /// The file of the file form, relative to the crate being compiled.
-fn read(lit: &LitStr) -> syn::Result<(PathBuf, String)> {
+pub fn read(lit: &LitStr) -> syn::Result<(PathBuf, String)> {
     let rel = lit.value();
     let Some(dir) = std::env::var_os("CARGO_MANIFEST_DIR") else {
         return Err(syn::Error::new(
@@ -121,7 +171,7 @@ fn read(lit: &LitStr) -> syn::Result<(PathBuf, String)> {
     }
 }
 
-fn file_error(lit: &LitStr, err: kinegen_core::front::toml_file::LoadError) -> syn::Error {
+pub fn file_error(lit: &LitStr, err: kinegen_core::front::toml_file::LoadError) -> syn::Error {
     let errors = err
         .errors
         .iter()

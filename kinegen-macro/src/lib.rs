@@ -4,6 +4,7 @@
 mod expand;
 mod parse;
 mod report;
+mod urdf;
 mod warnings;
 
 use proc_macro::TokenStream;

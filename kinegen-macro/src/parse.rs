@@ -2,8 +2,10 @@
 //!
 //! ```text
 //! #[attrs] vis struct Name;                 // or: vis struct Name = "robots/x.toml";
+//!                                           // or: vis struct Name = urdf("x.urdf", base = "b", tip = "t");
 //! key: value, ...                           // name, convention, params, joints, task,
-//!                                           // base, tool, scalar, budget
+//!                                           // base, tool, scalar, budget (URDF: name,
+//!                                           // params, task, scalar, budget, snap)
 //! ```
 //! Values are token expressions (`pi/2`, `-a2`, `0.5*L1`), turned into text for
 //! `kinegen_core::model::value::parse_value`; only the *shape* (which keys, lists, rows) is
@@ -11,6 +13,7 @@
 
 use kinegen_core::model::input;
 use kinegen_core::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
+use kinegen_core::model::value::{parse_decimal, rat_to_f64};
 use kinegen_core::Budget;
 use proc_macro2::{Delimiter, Group, TokenStream, TokenTree};
 use quote::ToTokens;
@@ -30,6 +33,11 @@ pub struct Input {
     pub ident: Ident,
     /// The file of the file form (`struct Ur5 = "robots/ur5.toml";`).
     pub file: Option<LitStr>,
+    /// The URDF form (`struct Ur5 = urdf("ur5.urdf", base = "base_link", tip = "tool0");`).
+    pub urdf: Option<UrdfCall>,
+    /// `snap: 1e-4` (URDF), with its tokens; `Err` with the message if it is not a
+    /// number.
+    pub snap: Option<(TokenStream, Result<f64, String>)>,
     /// The entries written in the macro.
     pub robot: RawRobot,
     /// `budget: { .. }`, if written.
@@ -42,21 +50,83 @@ pub struct Input {
     pub shape_errors: Vec<DhError>,
 }
 
+/// `urdf("file.urdf", base = "link", tip = "link")`.
+pub struct UrdfCall {
+    /// The file, relative to the crate's manifest.
+    pub file: LitStr,
+    /// `base = "…"`.
+    pub base: Option<LitStr>,
+    /// `tip = "…"`.
+    pub tip: Option<LitStr>,
+}
+
+impl Parse for UrdfCall {
+    fn parse(stream: ParseStream) -> syn::Result<Self> {
+        let file: LitStr = stream.parse()?;
+        let mut call = UrdfCall {
+            file,
+            base: None,
+            tip: None,
+        };
+        while !stream.is_empty() {
+            stream.parse::<Token![,]>()?;
+            if stream.is_empty() {
+                break;
+            }
+            let key: Ident = stream.parse()?;
+            stream.parse::<Token![=]>()?;
+            let value: LitStr = stream.parse()?;
+            let slot = match key.to_string().as_str() {
+                "base" => &mut call.base,
+                "tip" => &mut call.tip,
+                other => {
+                    return Err(syn::Error::new(
+                        key.span(),
+                        format!("unknown argument `{other}`: `urdf(\"file.urdf\", base = \"link\", tip = \"link\")`"),
+                    ))
+                }
+            };
+            if slot.replace(value).is_some() {
+                return Err(syn::Error::new(
+                    key.span(),
+                    input::given_twice(&key.to_string()),
+                ));
+            }
+        }
+        Ok(call)
+    }
+}
+
 impl Parse for Input {
     fn parse(stream: ParseStream) -> syn::Result<Self> {
         let attrs = stream.call(Attribute::parse_outer)?;
         let vis: Visibility = stream.parse()?;
         stream.parse::<Token![struct]>()?;
         let ident: Ident = stream.parse()?;
-        let file = if stream.peek(Token![=]) {
+        let (mut file, mut urdf) = (None, None);
+        if stream.peek(Token![=]) {
             stream.parse::<Token![=]>()?;
-            Some(stream.parse::<LitStr>()?)
-        } else {
-            None
-        };
+            if stream.peek(Ident) {
+                let form: Ident = stream.parse()?;
+                if form != "urdf" {
+                    return Err(syn::Error::new(
+                        form.span(),
+                        "expected a TOML file `\"robot.toml\"` or `urdf(\"robot.urdf\", base = \"…\", tip = \"…\")`",
+                    ));
+                }
+                let args;
+                syn::parenthesized!(args in stream);
+                urdf = Some(args.parse::<UrdfCall>()?);
+            } else {
+                file = Some(stream.parse::<LitStr>()?);
+            }
+        }
         stream.parse::<Token![;]>()?;
 
-        let mut r = Reader::default();
+        let mut r = Reader {
+            urdf: urdf.is_some(),
+            ..Reader::default()
+        };
         // Whole-robot errors (missing `convention`) point at the struct's name.
         r.spans.insert(Path::root(), ident.to_token_stream());
         let mut input = Input {
@@ -64,6 +134,8 @@ impl Parse for Input {
             vis,
             ident,
             file,
+            urdf,
+            snap: None,
             robot: RawRobot::default(),
             budget: None,
             keys: Vec::new(),
@@ -78,6 +150,19 @@ impl Parse for Input {
                 continue;
             }
             input.keys.push(key.clone());
+            if key == "snap" && r.urdf {
+                let text = expr_text(&entry.value);
+                let value = parse_decimal(text.trim_start_matches('+'))
+                    .map(|v| rat_to_f64(&v))
+                    .map_err(|_| {
+                        format!(
+                            "`snap` is a tolerance in radians / metres, e.g. `1e-4`, not `{text}`"
+                        )
+                    });
+                r.spans.insert(Path::root().key("snap"), entry.tokens());
+                input.snap = Some((entry.tokens(), value));
+                continue;
+            }
             r.top(&entry, &mut input.robot, &mut input.budget);
         }
         if let Some(e) = crate::report::combine(r.syntax) {
@@ -206,6 +291,8 @@ fn expr_text(tokens: &[TokenTree]) -> String {
 
 #[derive(Default)]
 struct Reader {
+    /// The URDF form: `convention`, `joints`, `base`, `tool` do not apply.
+    urdf: bool,
     spans: Spans,
     /// Shape errors with a path (filtered against validation errors later).
     errors: Vec<DhError>,
@@ -226,6 +313,14 @@ impl Reader {
         let key = e.key.to_string();
         let p = Path::root().key(&key);
         self.spans.insert(p.clone(), e.tokens());
+        if self.urdf && ["convention", "joints", "base", "tool"].contains(&key.as_str()) {
+            let msg = format!(
+                "`{key}` belongs to a DH table; the URDF form takes name, params, task, scalar, budget and snap \
+                 (base and tip go in `urdf(..)`)"
+            );
+            self.shape(p, e.key.to_token_stream(), msg);
+            return;
+        }
         match key.as_str() {
             "name" => match e.value.as_slice() {
                 [TokenTree::Literal(l)] => match Lit::new(l.clone()) {

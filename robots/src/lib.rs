@@ -1,5 +1,6 @@
 //! Real robots' kinematics, generated at compile time by `kinegen::kinematics!` from the
-//! DH tables in this crate's TOML files (each cites its source).
+//! DH tables in this crate's TOML files (each cites its source), and from URDF files
+//! (`urdf/`, `Ur5Urdf`, `PandaUrdf`).
 //!
 //! ```
 //! use kinegen_robots::Ur5;
@@ -52,6 +53,11 @@ kinegen::kinematics! {
 }
 kinegen::kinematics! {
     /// Franka Emika Panda (modified DH, flange and hand).
+    ///
+    /// No closed-form IK: with any one joint locked, no remaining six axes form a family
+    /// of `kinegen::ik::families` (the compile-time note lists each broken condition); the
+    /// numerical solvers of `kinegen::ik` serve it.
+    #[allow(deprecated)]
     pub struct Panda = "panda.toml";
 }
 kinegen::kinematics! {
@@ -75,6 +81,131 @@ kinegen::kinematics! {
     pub struct Scara = "scara.toml";
 }
 kinegen::kinematics! {
+    /// Kinova Jaco (6 joints, 60° wrist; joint 1 flipped, as in RTB's model).
+    ///
+    /// No closed-form IK: the 60° wrist is not spherical and no three axes are parallel
+    /// (the compile-time note names them); the numerical solvers of `kinegen::ik` serve it.
+    #[allow(deprecated)]
+    pub struct KinovaJaco = "kinova_jaco.toml";
+}
+kinegen::kinematics! {
+    /// Universal Robots UR5 from its URDF (`urdf/ur5.urdf`, `base_link` → `tool0`), with
+    /// UR's DH names for the lengths.
+    pub struct Ur5Urdf = "ur5_urdf.toml";
+}
+kinegen::kinematics! {
+    /// Franka Emika Panda from its URDF, `panda_link0` → `panda_hand_tcp` (the fingers,
+    /// one mimicking the other, are off the chain). No closed-form IK, as for [`Panda`].
+    #[allow(deprecated)]
+    pub struct PandaUrdf = "panda_urdf.toml";
+}
+kinegen::kinematics! {
     /// Cylindrical RPP arm.
+    ///
+    /// No closed-form IK family (its third axis is horizontal): the numerical solvers of
+    /// `kinegen::ik` serve it.
+    #[allow(deprecated)]
     pub struct CylindricalRpp = "cylindrical_rpp.toml";
 }
+
+/// Every robot table of this crate as `(name, file, TOML source)`, sorted by name: what
+/// `kinegen show ur5` reads, and what this crate's types are generated from.
+pub const TABLES: &[(&str, &str, &str)] = &[
+    (
+        "abb_irb120",
+        "robots/abb_irb120.toml",
+        include_str!("../abb_irb120.toml"),
+    ),
+    (
+        "abb_irb140",
+        "robots/abb_irb140.toml",
+        include_str!("../abb_irb140.toml"),
+    ),
+    (
+        "cylindrical_rpp",
+        "robots/cylindrical_rpp.toml",
+        include_str!("../cylindrical_rpp.toml"),
+    ),
+    (
+        "kinova_jaco",
+        "robots/kinova_jaco.toml",
+        include_str!("../kinova_jaco.toml"),
+    ),
+    (
+        "kuka_iiwa14",
+        "robots/kuka_iiwa14.toml",
+        include_str!("../kuka_iiwa14.toml"),
+    ),
+    (
+        "kuka_kr6_r900",
+        "robots/kuka_kr6_r900.toml",
+        include_str!("../kuka_kr6_r900.toml"),
+    ),
+    ("panda", "robots/panda.toml", include_str!("../panda.toml")),
+    (
+        "panda_urdf",
+        "robots/panda_urdf.toml",
+        include_str!("../panda_urdf.toml"),
+    ),
+    (
+        "planar_rr",
+        "robots/planar_rr.toml",
+        include_str!("../planar_rr.toml"),
+    ),
+    (
+        "planar_rrr",
+        "robots/planar_rrr.toml",
+        include_str!("../planar_rrr.toml"),
+    ),
+    (
+        "puma560",
+        "robots/puma560.toml",
+        include_str!("../puma560.toml"),
+    ),
+    ("scara", "robots/scara.toml", include_str!("../scara.toml")),
+    (
+        "stanford",
+        "robots/stanford.toml",
+        include_str!("../stanford.toml"),
+    ),
+    ("ur10", "robots/ur10.toml", include_str!("../ur10.toml")),
+    ("ur10e", "robots/ur10e.toml", include_str!("../ur10e.toml")),
+    ("ur3", "robots/ur3.toml", include_str!("../ur3.toml")),
+    ("ur5", "robots/ur5.toml", include_str!("../ur5.toml")),
+    (
+        "ur5_urdf",
+        "robots/ur5_urdf.toml",
+        include_str!("../ur5_urdf.toml"),
+    ),
+    ("ur5e", "robots/ur5e.toml", include_str!("../ur5e.toml")),
+];
+
+/// Every URDF of `robots/urdf/` as `(path relative to robots/, file, XML source)`,
+/// sorted: the files the tables above may name (`urdf = "urdf/ur5.urdf"`).
+pub const URDFS: &[(&str, &str, &str)] = &[
+    (
+        "urdf/cobra600.urdf",
+        "robots/urdf/cobra600.urdf",
+        include_str!("../urdf/cobra600.urdf"),
+    ),
+    (
+        "urdf/kinova_j2s6s.urdf",
+        "robots/urdf/kinova_j2s6s.urdf",
+        include_str!("../urdf/kinova_j2s6s.urdf"),
+    ),
+    (
+        "urdf/kuka_kr6_r900.urdf",
+        "robots/urdf/kuka_kr6_r900.urdf",
+        include_str!("../urdf/kuka_kr6_r900.urdf"),
+    ),
+    (
+        "urdf/panda.urdf",
+        "robots/urdf/panda.urdf",
+        include_str!("../urdf/panda.urdf"),
+    ),
+    (
+        "urdf/ur5.urdf",
+        "robots/urdf/ur5.urdf",
+        include_str!("../urdf/ur5.urdf"),
+    ),
+];

@@ -6,7 +6,9 @@
 //! stop and pass every fraction of the way together.
 //!
 //! [`CartesianLine::track_ik`] follows the samples with the runtime's numerical IK, each
-//! solve seeded with the previous solution, and refuses joint jumps (branch changes).
+//! solve seeded with the previous solution, and refuses joint jumps (branch changes);
+//! [`CartesianLine::track_closed_form`] takes the nearest exact closed-form solution of
+//! each sample instead (robots with a closed-form IK family).
 //!
 //! Euler angles are not interpolated: their components are coupled, so interpolating
 //! them one by one neither follows a shortest rotation nor keeps a constant axis.
@@ -16,7 +18,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use super::error::{self, TrajectoryError};
 use super::profile::{Profile, SampleTimes};
 use super::trapezoid::Trapezoid;
-use crate::ik::{self, IkError, IkOptions, IkSolution, IkTarget};
+use crate::ik::{self, IkError, IkOptions, IkSolution, IkTarget, InverseKinematics};
 use crate::math;
 use crate::Kinematics;
 
@@ -227,6 +229,67 @@ impl<P: Profile> CartesianLine<P> {
             failed: false,
         })
     }
+
+    /// Follows the sampled line with the robot's **closed-form** IK: each sample takes
+    /// the exact solution nearest to the previous one (`ik_near`), `q_start` for the
+    /// first. No iteration and no seed that can slip to another branch: the nearest
+    /// branch is chosen among all of them, and at a singular pose the joints it leaves
+    /// free keep their previous values, so the joint path stays continuous through a
+    /// wrist singularity where a Jacobian-based tracker's steps blow up. A sample out of
+    /// reach yields [`OutOfReach`] and ends the track.
+    ///
+    /// ```
+    /// use kinegen::adapters::fk_isometry;
+    /// use kinegen::trajectory::CartesianLine;
+    /// use kinegen_robots::Ur5;
+    /// use nalgebra::Translation3;
+    /// let ur5 = Ur5::default();
+    /// let q0 = [0.3, -1.2, 1.4, -0.3, 1.1, 0.2];
+    /// let a = fk_isometry(&ur5, &q0);
+    /// let b = Translation3::new(0.1, 0.0, -0.05) * a;
+    /// let line = CartesianLine::with_limits(a, b, 0.25, 1.0, 1.0, 2.0)?;
+    /// let mut last = q0;
+    /// for step in line.track_closed_form(&ur5, 500.0, q0)? {
+    ///     let (_t, q) = step.expect("the UR5 reaches every sample");
+    ///     last = q;
+    /// }
+    /// assert!((fk_isometry(&ur5, &last).translation.vector - b.translation.vector).norm() < 1e-9);
+    /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
+    /// ```
+    #[allow(clippy::type_complexity)]
+    pub fn track_closed_form<'a, R: InverseKinematics<N>, const N: usize>(
+        &'a self,
+        robot: &'a R,
+        rate_hz: f64,
+        q_start: [f64; N],
+    ) -> Result<
+        Track<
+            CartesianSamples<'a, P>,
+            impl FnMut(&Isometry3<f64>, &[f64; N]) -> Result<[f64; N], OutOfReach> + 'a,
+            N,
+        >,
+        TrajectoryError,
+    > {
+        for q in &q_start {
+            error::finite(*q, "start configuration")?;
+        }
+        let solve = move |target: &Isometry3<f64>, seed: &[f64; N]| {
+            robot
+                .ik_near(&crate::adapters::pose_matrix(target), seed)
+                .ok_or(OutOfReach)
+        };
+        self.track(rate_hz, q_start, solve)
+    }
+}
+
+/// A sample of [`CartesianLine::track_closed_form`] the robot cannot reach.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutOfReach;
+
+impl core::fmt::Display for OutOfReach {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("the pose is out of the robot's reach")
+    }
 }
 
 /// Why [`CartesianLine::track_ik`] stopped.
@@ -267,6 +330,9 @@ impl<const N: usize> core::fmt::Display for IkTrackError<N> {
 
 #[cfg(feature = "std")]
 impl<const N: usize> std::error::Error for IkTrackError<N> {}
+
+#[cfg(feature = "std")]
+impl std::error::Error for OutOfReach {}
 
 /// Iterator returned by [`CartesianLine::track_ik`]: `Ok((t, solution))` per sample, or
 /// the first error, after which it stops.

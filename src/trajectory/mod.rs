@@ -25,7 +25,9 @@ mod profile;
 mod sync;
 mod trapezoid;
 
-pub use cartesian::{slerp, track, CartesianLine, CartesianSamples, IkTrack, IkTrackError, Track};
+pub use cartesian::{
+    slerp, track, CartesianLine, CartesianSamples, IkTrack, IkTrackError, OutOfReach, Track,
+};
 pub use error::TrajectoryError;
 pub use multi_segment::{heuristic_via_velocities, StopAtVias, ThroughVias};
 pub use polynomial::{Cubic, Quintic};

@@ -248,17 +248,11 @@ pub fn fd_position_jacobian<R: Kinematics<N>, const N: usize>(
     out
 }
 
-/// `count` deterministic configurations of `N` joint values in [-π, π] (SplitMix64).
+/// `count` deterministic configurations of `N` joint values in [-π, π]
+/// ([`kinegen_core::numeric::configurations`]).
 pub fn configurations<const N: usize>(seed: u64, count: usize) -> Vec<[f64; N]> {
-    let mut state = seed;
-    let mut unit = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..count)
-        .map(|_| core::array::from_fn(|_| std::f64::consts::PI * (2.0 * unit() - 1.0)))
+    kinegen_core::numeric::configurations(seed, count, N)
+        .into_iter()
+        .map(|q| core::array::from_fn(|i| q[i]))
         .collect()
 }

@@ -7,10 +7,11 @@
 //! computed once. Past the budget (or past the engine's deadline) a node simply has no
 //! normal form and is shared only structurally — always correct, just less simplified.
 
-use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
 
 use num_traits::{One, Signed, Zero};
 
+use crate::algebra::fast_hash::{hash_rat, FastMap};
 use crate::algebra::poly::{Poly, Ring, Var};
 use crate::model::options::Deadline;
 use crate::model::value::Rat;
@@ -19,7 +20,7 @@ use crate::model::value::Rat;
 pub type Id = u32;
 
 /// One operation of the straight-line code.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Node {
     /// A rational constant.
     Num(Rat),
@@ -33,6 +34,35 @@ pub enum Node {
     Mul(Id, Id),
     /// `−a`.
     Neg(Id),
+}
+
+/// Constants hash by their reduced numerator and denominator ([`hash_rat`]), not by
+/// `num-rational`'s far costlier `Hash`; equal nodes hash alike.
+impl Hash for Node {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        match self {
+            Node::Num(r) => {
+                h.write_u8(0);
+                hash_rat(r, h);
+            }
+            Node::Leaf(v) => {
+                h.write_u8(1);
+                h.write_u32(*v);
+            }
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => {
+                h.write_u8(match self {
+                    Node::Add(..) => 2,
+                    Node::Sub(..) => 3,
+                    _ => 4,
+                });
+                h.write_u64((u64::from(*a) << 32) | u64::from(*b));
+            }
+            Node::Neg(a) => {
+                h.write_u8(5);
+                h.write_u32(*a);
+            }
+        }
+    }
 }
 
 impl Node {
@@ -55,8 +85,10 @@ pub struct Graph {
     nf: Vec<Option<Poly>>,
     /// Operations in the node's expression tree (saturating).
     cost: Vec<u32>,
-    memo: HashMap<Node, Id>,
-    by_nf: HashMap<Poly, Id>,
+    memo: FastMap<Node, Id>,
+    /// Value numbering: [`Poly::fingerprint`] → the nodes representing the values with
+    /// that fingerprint (one per value; more than one only on a hash collision).
+    by_nf: FastMap<u64, Vec<Id>>,
     /// Largest normal form (terms) kept; larger ones are dropped.
     pub max_terms: usize,
     /// Normal forms dropped for size.
@@ -83,8 +115,8 @@ impl Graph {
             nodes: Vec::new(),
             nf: Vec::new(),
             cost: Vec::new(),
-            memo: HashMap::new(),
-            by_nf: HashMap::new(),
+            memo: FastMap::default(),
+            by_nf: FastMap::default(),
             max_terms,
             nf_overflows: 0,
             deadline: Deadline::never(),
@@ -149,6 +181,12 @@ impl Graph {
     }
 
     fn intern(&mut self, node: Node, nf: Option<Poly>) -> Id {
+        let fp = nf.as_ref().map(Poly::fingerprint);
+        self.intern_with(node, nf, fp)
+    }
+
+    /// [`Graph::intern`] with the normal form's fingerprint already computed.
+    fn intern_with(&mut self, node: Node, nf: Option<Poly>, fp: Option<u64>) -> Id {
         if let Some(&id) = self.memo.get(&node) {
             return id;
         }
@@ -156,13 +194,16 @@ impl Graph {
         let cost = self.tree_cost(&node);
         self.nodes.push(node.clone());
         self.memo.insert(node, id);
-        if let Some(p) = &nf {
+        if let (Some(p), Some(fp)) = (&nf, fp) {
             // The cheapest node of a value represents it from now on.
-            match self.by_nf.get(p) {
-                Some(&old) if self.cost[old as usize] <= cost => {}
-                _ => {
-                    self.by_nf.insert(p.clone(), id);
+            match self.representative(p, fp) {
+                Some(old) if self.cost[old as usize] <= cost => {}
+                Some(old) => {
+                    let bucket = self.by_nf.get_mut(&fp).expect("found above");
+                    let slot = bucket.iter_mut().find(|x| **x == old).expect("found above");
+                    *slot = id;
                 }
+                None => self.by_nf.entry(fp).or_default().push(id),
             }
         }
         self.nf.push(nf);
@@ -197,26 +238,47 @@ impl Graph {
         }
     }
 
+    /// The node representing the value `p` (whose fingerprint is `fp`), if any.
+    fn representative(&self, p: &Poly, fp: u64) -> Option<Id> {
+        let same = |id: &&Id| self.nf[**id as usize].as_ref() == Some(p);
+        self.by_nf.get(&fp)?.iter().find(same).copied()
+    }
+
+    /// The node representing the value `−p` (`fp` is `p`'s fingerprint), if any.
+    fn opposite(&self, p: &Poly, fp: u64) -> Option<Id> {
+        let opposite = |id: &&Id| {
+            self.nf[**id as usize]
+                .as_ref()
+                .is_some_and(|q| q.is_negation_of(p))
+        };
+        self.by_nf
+            .get(&fp.wrapping_neg())?
+            .iter()
+            .find(opposite)
+            .copied()
+    }
+
     /// Look up or create a node whose value is `nf` (when known), built as `node`.
     fn make(&mut self, node: Node, nf: Option<Poly>) -> Id {
         if let Some(p) = &nf {
             if let Some(r) = p.as_constant() {
                 return self.num(r);
             }
-            if let Some(&id) = self.by_nf.get(p) {
+            let fp = p.fingerprint();
+            if let Some(id) = self.representative(p, fp) {
                 // An equal value exists; keep it unless this form is cheaper.
                 if self.cost[id as usize] <= self.tree_cost(&node) {
                     return id;
                 }
-                return self.intern(node, nf);
+                return self.intern_with(node, nf, Some(fp));
             }
-            let negated = p.neg();
-            if let Some(&id) = self.by_nf.get(&negated) {
+            if let Some(id) = self.opposite(p, fp) {
                 // Value is −(existing): share it through a negation.
                 if !matches!(node, Node::Neg(x) if x == id) {
-                    return self.intern(Node::Neg(id), nf);
+                    return self.intern_with(Node::Neg(id), nf, Some(fp));
                 }
             }
+            return self.intern_with(node, nf, Some(fp));
         }
         self.intern(node, nf)
     }
@@ -306,13 +368,15 @@ impl Graph {
             Node::Neg(x) => x,
             Node::Sub(x, y) => self.sub(y, x),
             _ => {
-                let nf = self.nf[a as usize].as_ref().map(Poly::neg);
-                if let Some(p) = &nf {
-                    if let Some(&id) = self.by_nf.get(p) {
-                        return id;
-                    }
+                let Some(p) = &self.nf[a as usize] else {
+                    return self.intern(Node::Neg(a), None);
+                };
+                let fp = p.fingerprint();
+                if let Some(id) = self.opposite(p, fp) {
+                    return id;
                 }
-                self.intern(Node::Neg(a), nf)
+                let nf = p.neg();
+                self.intern_with(Node::Neg(a), Some(nf), Some(fp.wrapping_neg()))
             }
         }
     }
@@ -479,14 +543,28 @@ impl Graph {
 
     /// Numeric value of a node with variable values `x`.
     pub fn eval(&self, id: Id, x: &dyn Fn(Var) -> f64) -> f64 {
-        let mut memo = vec![None; self.nodes.len()];
-        self.eval_memo(id, x, &mut memo)
+        self.eval_in(id, x, &mut EvalScratch::default())
     }
 
-    /// Numeric value of a node, values of already evaluated nodes kept in `memo` (one
-    /// slot per node, `None` at first) for the next call with the same `x`.
-    pub fn eval_memo(&self, id: Id, x: &dyn Fn(Var) -> f64, memo: &mut Vec<Option<f64>>) -> f64 {
-        if let Some(v) = memo[id as usize] {
+    /// [`Graph::eval`] with reusable scratch space: repeated calls (16 points per checked
+    /// rewrite) neither allocate nor clear a memo the size of the graph.
+    pub fn eval_in(&self, id: Id, x: &dyn Fn(Var) -> f64, scratch: &mut EvalScratch) -> f64 {
+        scratch.start(self.nodes.len());
+        self.eval_memo(id, x, scratch)
+    }
+
+    /// Values of several nodes at the same variable values `x`, each shared node
+    /// evaluated once.
+    pub fn eval_all(&self, ids: &[Id], x: &dyn Fn(Var) -> f64) -> Vec<f64> {
+        let mut scratch = EvalScratch::default();
+        scratch.start(self.nodes.len());
+        ids.iter()
+            .map(|&id| self.eval_memo(id, x, &mut scratch))
+            .collect()
+    }
+
+    fn eval_memo(&self, id: Id, x: &dyn Fn(Var) -> f64, memo: &mut EvalScratch) -> f64 {
+        if let Some(v) = memo.get(id) {
             return v;
         }
         let v = match &self.nodes[id as usize] {
@@ -497,8 +575,39 @@ impl Graph {
             Node::Mul(a, b) => self.eval_memo(*a, x, memo) * self.eval_memo(*b, x, memo),
             Node::Neg(a) => -self.eval_memo(*a, x, memo),
         };
-        memo[id as usize] = Some(v);
+        memo.set(id, v);
         v
+    }
+}
+
+/// Memo of [`Graph::eval_in`]: each value is stamped with the call that computed it,
+/// so a new call starts empty by bumping the stamp.
+#[derive(Clone, Debug, Default)]
+pub struct EvalScratch {
+    values: Vec<(u32, f64)>,
+    call: u32,
+}
+
+impl EvalScratch {
+    fn start(&mut self, nodes: usize) {
+        self.call = self.call.wrapping_add(1);
+        if self.call == 0 {
+            // Stamps wrapped around: forget everything once.
+            self.values.clear();
+            self.call = 1;
+        }
+        if self.values.len() < nodes {
+            self.values.resize(nodes, (0, 0.0));
+        }
+    }
+
+    fn get(&self, id: Id) -> Option<f64> {
+        let (call, v) = self.values[id as usize];
+        (call == self.call).then_some(v)
+    }
+
+    fn set(&mut self, id: Id, v: f64) {
+        self.values[id as usize] = (self.call, v);
     }
 }
 

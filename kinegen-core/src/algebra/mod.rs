@@ -7,8 +7,12 @@
 //! - [`graph`]: straight-line code as a hash-consed DAG whose nodes carry their normal
 //!   form — equal (or opposite) values are one node.
 //! - [`trig`]: normal forms read back as sines and cosines of angle sums.
+//! - [`rational`]: products and sums of rationals through machine integers when they fit.
+//! - [`fast_hash`]: cheap, deterministic hashing for the graph's tables.
 
 pub mod angles;
+pub mod fast_hash;
 pub mod graph;
 pub mod poly;
+pub mod rational;
 pub mod trig;

@@ -9,9 +9,12 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
+use std::hash::{Hash, Hasher};
 
 use num_traits::{One, Signed, Zero};
 
+use crate::algebra::fast_hash::{hash_magnitude, mix, FxHasher};
+use crate::algebra::rational;
 use crate::model::value::{fmt_rat, rat_to_f64, Rat};
 
 /// A variable of the ring: an index into [`Ring`]'s table.
@@ -39,9 +42,16 @@ pub enum VarKind {
 pub type Mono = Vec<(Var, u32)>;
 
 /// A polynomial in normal form: monomial → nonzero rational coefficient.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub struct Poly {
     terms: BTreeMap<Mono, Rat>,
+}
+
+/// By [`Poly::fingerprint`], a function of the terms, so consistent with equality.
+impl Hash for Poly {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        state.write_u64(self.fingerprint());
+    }
 }
 
 impl Poly {
@@ -95,6 +105,44 @@ impl Poly {
         self.terms.is_empty()
     }
 
+    /// A 64-bit hash of the normal form that is odd under negation,
+    /// `(−p).fingerprint() == p.fingerprint().wrapping_neg()`, so value numbering can
+    /// look an opposite value up without building it: the sum over the terms of a hash
+    /// of (monomial, |coefficient|), each signed like its coefficient.
+    pub fn fingerprint(&self) -> u64 {
+        let mut sum = 0u64;
+        for (m, c) in &self.terms {
+            let mut h = FxHasher::default();
+            for &(v, e) in m {
+                h.write_u64((u64::from(v) << 32) | u64::from(e));
+            }
+            h.write_u64(u64::MAX);
+            hash_magnitude(c, &mut h);
+            let t = mix(h.finish());
+            sum = if c.is_negative() {
+                sum.wrapping_sub(t)
+            } else {
+                sum.wrapping_add(t)
+            };
+        }
+        sum
+    }
+
+    /// Whether `self == −other`, without building `−other`.
+    pub fn is_negation_of(&self, other: &Poly) -> bool {
+        self.terms.len() == other.terms.len()
+            && self
+                .terms
+                .iter()
+                .zip(&other.terms)
+                .all(|((ma, ca), (mb, cb))| {
+                    ma == mb
+                        && ca.numer().sign() == -cb.numer().sign()
+                        && ca.numer().magnitude() == cb.numer().magnitude()
+                        && ca.denom() == cb.denom()
+                })
+    }
+
     /// Terms in canonical order.
     pub fn terms(&self) -> impl Iterator<Item = (&Mono, &Rat)> {
         self.terms.iter()
@@ -118,7 +166,8 @@ impl Poly {
                 e.insert(c);
             }
             std::collections::btree_map::Entry::Occupied(mut e) => {
-                *e.get_mut() += c;
+                let sum = rational::add(e.get(), &c);
+                *e.get_mut() = sum;
                 if e.get().is_zero() {
                     e.remove();
                 }
@@ -401,7 +450,7 @@ impl Ring {
                     m2[i].1 = 1;
                 }
                 let factor = Rat::from_integer(num_bigint::BigInt::from(k).pow(half));
-                return self.reduce_mono(m2, c * factor, out);
+                return self.reduce_mono(m2, rational::mul(&c, &factor), out);
             }
             if let Some(cv) = self.cos_of[v as usize] {
                 // s^e = s^(e-2) (1 − c²)
@@ -428,7 +477,7 @@ impl Ring {
         let mut out = Poly::zero();
         for (ma, ca) in &a.terms {
             for (mb, cb) in &b.terms {
-                self.reduce_mono(mono_mul(ma, mb), ca * cb, &mut out);
+                self.reduce_mono(mono_mul(ma, mb), rational::mul(ca, cb), &mut out);
             }
             if out.terms.len() > max_terms {
                 return Err(TooLarge);

@@ -6,6 +6,9 @@
 //! - modified (proximal, Craig): `A_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)`; the
 //!   joint moves about `z_i`, read in the link frame.
 //!
+//! A flipped joint (`flip = true`) runs against z: its motion is `Rz(−q_i + θ_i)` or
+//! `Tz(−q_i + d_i)` (`Motion::sign = -1`).
+//!
 //! Base and tool are `Trans(xyz) · Rz(yaw) · Ry(pitch) · Rx(roll)`, zero entries left out.
 
 use crate::chain::{Axis, AxisAt, Chain, Elem, Link, Motion};
@@ -34,19 +37,22 @@ impl Robot {
             }
             .into(),
             summary: summary(self),
+            snaps: Vec::new(),
         }
     }
 }
 
 /// One DH row.
 fn link(convention: Convention, i: usize, j: &Joint) -> Link {
-    // The joint variable adds to θ or d; the other of the two is a constant.
+    // The joint variable adds to θ or d (a flipped one subtracts); the other of the two
+    // is a constant.
+    let sign = if j.flip { -1 } else { 1 };
     let (motion, fixed) = match j.kind {
         JointKind::Revolute => (
             Motion {
                 kind: j.kind,
                 axis: Axis::Z,
-                sign: 1,
+                sign,
                 offset: j.theta.clone(),
             },
             Elem::Trans(Axis::Z, j.d.clone()),
@@ -55,7 +61,7 @@ fn link(convention: Convention, i: usize, j: &Joint) -> Link {
             Motion {
                 kind: j.kind,
                 axis: Axis::Z,
-                sign: 1,
+                sign,
                 offset: j.d.clone(),
             },
             Elem::Rot(Axis::Z, j.theta.clone()),
@@ -111,29 +117,64 @@ pub fn frame(f: &Frame) -> Vec<Elem> {
     out
 }
 
-/// The DH table as markdown, for the generated type's rustdoc.
+/// The DH table as markdown, for the generated type's rustdoc (π written as π).
 fn summary(robot: &Robot) -> Vec<String> {
     let mut s = vec![
         "| joint | type | a | α | d | θ |".into(),
         "|---|---|---|---|---|---|".into(),
     ];
     for (i, j) in robot.joints.iter().enumerate() {
-        let q = format!("q{}", i + 1);
-        let (d, th) = match j.kind {
-            JointKind::Revolute => (j.d.to_string(), with_var(&q, &j.theta.to_string())),
-            JointKind::Prismatic => (with_var(&q, &j.d.to_string()), j.theta.to_string()),
+        let q = if j.flip {
+            format!("-q{}", i + 1)
+        } else {
+            format!("q{}", i + 1)
+        };
+        let (kind, d, th) = match j.kind {
+            JointKind::Revolute => (
+                "revolute",
+                j.d.to_string(),
+                with_var(&q, &j.theta.to_string()),
+            ),
+            JointKind::Prismatic => (
+                "prismatic",
+                with_var(&q, &j.d.to_string()),
+                j.theta.to_string(),
+            ),
         };
         s.push(format!(
-            "| {} | {:?} | {} | {} | {} | {} |",
+            "| {} | {kind} | {} | {} | {} | {} |",
             i + 1,
-            j.kind,
-            j.a,
-            j.alpha,
-            d,
-            th
+            greek_pi(&j.a.to_string()),
+            greek_pi(&j.alpha.to_string()),
+            greek_pi(&d),
+            greek_pi(&th)
         ));
     }
     s
+}
+
+/// `pi/2` → `π/2`, `3*pi/4` → `3π/4`: the word `pi` of a printed [`crate::model::value::Value`],
+/// not a parameter that merely contains it (`pivot`).
+fn greek_pi(text: &str) -> String {
+    let word = |c: char| c.is_alphanumeric() || c == '_';
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("pi") {
+        let (before, after) = (&rest[..at], &rest[at + 2..]);
+        let alone = !before.ends_with(word) && !after.starts_with(word);
+        out.push_str(before);
+        if alone {
+            if out.ends_with('*') && out[..out.len() - 1].ends_with(|c: char| c.is_ascii_digit()) {
+                out.pop();
+            }
+            out.push('π');
+        } else {
+            out.push_str("pi");
+        }
+        rest = after;
+    }
+    out.push_str(rest);
+    out
 }
 
 /// `q2`, `q2 + pi/2`, `q2 - 0.1`.
@@ -144,5 +185,20 @@ fn with_var(q: &str, rest: &str) -> String {
         format!("{q} - {r}")
     } else {
         format!("{q} + {rest}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::greek_pi;
+
+    #[test]
+    fn pi_is_greek_only_as_a_word() {
+        assert_eq!(greek_pi("pi/2"), "π/2");
+        assert_eq!(greek_pi("-pi/2"), "-π/2");
+        assert_eq!(greek_pi("3*pi/4"), "3π/4");
+        assert_eq!(greek_pi("q2 + pi"), "q2 + π");
+        assert_eq!(greek_pi("a*pi + 0.1"), "a*π + 0.1");
+        assert_eq!(greek_pi("pivot + api + pi_2"), "pivot + api + pi_2");
     }
 }

@@ -22,6 +22,20 @@ pub fn struct_doc(chain: &Chain) -> String {
             let _ = writeln!(s, "/// {line}");
         }
     }
+    if !chain.snaps.is_empty() {
+        let (p, o) = chain.snap_bounds();
+        let _ = writeln!(
+            s,
+            "///\n/// Snapped to exact values ({}); together, to first order, they move the tool by at \
+             most {} m and {:.1e} rad from the description read literally:\n///",
+            chain.snaps.len(),
+            crate::chain::bound(p),
+            o
+        );
+        for snap in &chain.snaps {
+            let _ = writeln!(s, "/// - {snap}");
+        }
+    }
     s.push_str(
         "///\n/// Joint angles enter as `s_i = sin(q_i)`, `c_i = cos(q_i)`; `s23 = sin(q2 + q3)`.",
     );

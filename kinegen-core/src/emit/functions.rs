@@ -7,9 +7,11 @@ use crate::chain::Chain;
 use crate::emit::code::{Body, Coder, OpCount};
 use crate::emit::docs::{formula_doc, matrix_names};
 use crate::emit::formulas::Formulas;
+use crate::emit::ik::{items as ik_items, CheckImpl};
 use crate::kinematics::det::closed_form::DetModel;
 use crate::kinematics::det::gradient::DetGradient;
 use crate::kinematics::det::structural::square_rows;
+use crate::kinematics::ik::IkModel;
 use crate::kinematics::model::Model;
 use crate::kinematics::second_order::SecondOrder;
 use crate::model::robot::Scalar;
@@ -22,7 +24,8 @@ pub struct Method {
     pub doc: String,
     /// The method's name.
     pub name: &'static str,
-    /// Whether it also takes the joint rates `qd`.
+    /// Whether it also takes the joint rates `qd` (`Code` and `Expr` bodies; a `Custom`
+    /// body states its own arguments).
     pub rates: bool,
     /// Return type.
     pub ret: String,
@@ -42,6 +45,15 @@ pub enum MethodBody {
     },
     /// A single expression (the numeric determinant fallback).
     Expr(String),
+    /// Other arguments than `q`: `pub fn name(&self, args) -> ret { lets; result }`.
+    Custom {
+        /// The arguments after `&self` (`pose: &[[f64; 4]; 4]`).
+        args: String,
+        /// Statements.
+        lets: Vec<String>,
+        /// The returned expression.
+        result: String,
+    },
 }
 
 /// A constant `pub const name: ty = value;`.
@@ -104,6 +116,8 @@ pub struct Functions {
     pub notes: Vec<String>,
     /// The float type name (`f64`, `f32`).
     pub float: &'static str,
+    /// The `Check` impl closed-form IK needs, when there is an `ik`.
+    pub check: Option<CheckImpl>,
 }
 
 /// Which square Jacobian `jacobian_det` takes the determinant of.
@@ -116,14 +130,15 @@ pub enum DetOf {
 }
 
 /// The generated type's contents for `chain`, from its simplified `model`, its
-/// determinant (`None` when the Jacobian is not square), its second-order outputs and
-/// the determinant's gradient.
+/// determinant (`None` when the Jacobian is not square), its second-order outputs, the
+/// determinant's gradient and its closed-form IK (`None`: not attempted).
 pub fn functions(
     chain: &Chain,
     model: &Model,
     det: &Option<Result<DetModel, String>>,
     second: &SecondOrder,
     det_gradient: &Option<Result<DetGradient, String>>,
+    ik: &Option<Result<IkModel, String>>,
 ) -> Functions {
     let coder = Coder::new(chain, &model.sym);
     let mut out = Out {
@@ -151,6 +166,21 @@ pub fn functions(
         .items
         .iter()
         .any(|i| matches!(i, Item::Method(m) if m.name == "det_gradient"));
+    let check = match ik {
+        Some(Ok(m)) => {
+            let factors = matches!(det, Some(Ok(_)));
+            let (items, check) = ik_items(chain, m, factors);
+            out.items.extend(items);
+            Some(check)
+        }
+        Some(Err(why)) if why != crate::kinematics::ik::family::OUT_OF_DOMAIN => {
+            out.notes.push(format!(
+                "no closed-form inverse kinematics ({why}); the numerical solvers of `kinegen::ik` serve this robot"
+            ));
+            None
+        }
+        _ => None,
+    };
     let fields = chain
         .params
         .iter()
@@ -167,6 +197,7 @@ pub fn functions(
         stats: out.stats,
         notes: out.notes,
         float: coder.float(),
+        check,
     }
 }
 
@@ -406,12 +437,11 @@ impl Out<'_> {
         };
         let doc = format!(
             "Determinant of {which}, in closed form:\n\n```text\ndet J = {}\n```\n\n\
-             LaTeX: `{}`\n\n\
+             In LaTeX: [`Self::DET_LATEX`].\n\n\
              Rows `[vx vy vz ωx ωy ωz]` (linear velocity of the tool point); the value does not depend on \
              the frame the Jacobian is expressed in nor on the reference point. Signs follow the \
              table's convention and joint offsets. {} operations, {} `sin_cos`.",
             d.text,
-            d.latex,
             body.ops.total(),
             body.ops.trig
         );
@@ -450,7 +480,7 @@ impl Out<'_> {
             .collect();
         let text = format!("{:?}", d.text);
         self.konst(
-            format!("`det J` as text: `{}`.", d.text),
+            "`det J` as plain text, the closed form [`Self::jacobian_det`] computes.".into(),
             "DET",
             "&'static str".into(),
             text,

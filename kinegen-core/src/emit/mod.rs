@@ -4,6 +4,7 @@
 //!   `sin_cos_n`, angle-sum names) and operation counts.
 //! - [`functions`]: what the generated type holds — each method's body and doc, the
 //!   constants — as values; [`second_order`] its second-order methods.
+//! - [`ik`]: the closed-form IK methods and constants.
 //! - [`docs`], [`formulas`], [`latex`]: the closed forms for people (rustdoc,
 //!   `FORMULAS`, LaTeX).
 //! - [`rust`]: the item printed and parsed into tokens.
@@ -12,6 +13,7 @@ pub mod code;
 pub mod docs;
 pub mod formulas;
 pub mod functions;
+pub mod ik;
 pub mod latex;
 pub mod rust;
 pub mod second_order;

@@ -8,6 +8,7 @@ use proc_macro2::{Ident, TokenStream};
 use crate::chain::Chain;
 use crate::emit::docs::struct_doc;
 use crate::emit::functions::{Const, DetOf, Functions, Item, Method, MethodBody};
+use crate::emit::ik::CheckImpl;
 use crate::model::robot::Scalar;
 
 /// What the generated item looks like from outside: `#[attrs] vis struct ident`.
@@ -68,6 +69,10 @@ pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenS
     if chain.scalar == Scalar::F64 {
         items.push_str(&traits(chain, &ident, functions));
     }
+    if let Some(check) = &functions.check {
+        items.push_str(&check_impl(chain, &ident, check));
+        items.push_str(&ik_impl(chain, &ident, check));
+    }
     match syn::parse_str::<syn::File>(&items) {
         Ok(file) => quote::quote!(#file),
         Err(e) => {
@@ -85,7 +90,9 @@ fn the_struct(chain: &Chain, header: &ItemHeader, functions: &Functions) -> Stri
     let ident = header.ident.to_string();
     let vis = header.vis.to_string();
     let attrs = header.attrs.to_string();
-    let summary = struct_doc(chain);
+    // After the user's own doc comment, a paragraph of its own (not one run-on summary).
+    let gap = if has_doc(&header.attrs) { "///\n" } else { "" };
+    let summary = format!("{gap}{}", struct_doc(chain));
     if functions.fields.is_empty() {
         return format!(
             "{attrs}\n{summary}\n#[derive(Clone, Copy, Debug, Default, PartialEq)]\n{vis} struct {ident};\n"
@@ -101,6 +108,14 @@ fn the_struct(chain: &Chain, header: &ItemHeader, functions: &Functions) -> Stri
         "{attrs}\n{summary}\n#[derive(Clone, Copy, Debug, PartialEq)]\n{vis} struct {ident} {{\n{fields}}}\n\
          impl ::core::default::Default for {ident} {{\n/// The DH table's values.\nfn default() -> Self {{ Self {{ {defaults} }} }}\n}}\n"
     )
+}
+
+/// Whether `attrs` hold a doc comment (`#[doc = …]`).
+fn has_doc(attrs: &TokenStream) -> bool {
+    use syn::parse::Parser;
+    syn::Attribute::parse_outer
+        .parse2(attrs.clone())
+        .is_ok_and(|a| a.iter().any(|a| a.path().is_ident("doc")))
 }
 
 /// `impl Kinematics<N>`, `impl SecondOrderKinematics<N>` and, with task rows,
@@ -159,6 +174,43 @@ fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
     tr
 }
 
+/// `impl Check<N>`: what the IK's `finish` step evaluates for least-squares and singular
+/// branches.
+fn check_impl(chain: &Chain, ident: &str, check: &CheckImpl) -> String {
+    let n = chain.dof();
+    let residual = match &check.task_rows {
+        None => "::kinegen::ik::solutions::residual(&self.fk(q), pose)".to_string(),
+        Some(rows) => {
+            format!("::kinegen::ik::solutions::task_residual(&self.fk(q), pose, &{rows:?})")
+        }
+    };
+    let singular = if check.factors {
+        "::kinegen::ik::solutions::vanishing(&self.singular_factors(q))"
+    } else {
+        "{ let _ = q; 0 }"
+    };
+    format!(
+        "impl ::kinegen::ik::solutions::Check<{n}> for {ident} {{\n\
+         #[inline] fn residual(&self, q: &[f64; {n}], pose: &::kinegen::ik::geometry::Pose) -> f64 {{ {residual} }}\n\
+         #[inline] fn singular(&self, q: &[f64; {n}]) -> u32 {{ {singular} }}\n}}\n"
+    )
+}
+
+/// `impl InverseKinematics<N>`: the closed form behind a trait generic code can call.
+fn ik_impl(chain: &Chain, ident: &str, check: &CheckImpl) -> String {
+    let n = chain.dof();
+    let seeded = match check.locked {
+        None => "self.ik_seeded(pose, free)".to_string(),
+        Some(k) => format!("self.ik_seeded(pose, free[{k}], free)"),
+    };
+    format!(
+        "impl ::kinegen::InverseKinematics<{n}> for {ident} {{\n\
+         const IK_FAMILY: &'static str = Self::IK_FAMILY;\n\
+         #[inline] fn ik_near(&self, pose: &[[f64; 4]; 4], q_current: &[f64; {n}]) -> ::core::option::Option<[f64; {n}]> {{ {ident}::ik_near(self, pose, q_current) }}\n\
+         #[inline] fn ik_each(&self, pose: &[[f64; 4]; 4], free: &[f64; {n}], f: &mut dyn FnMut(&::kinegen::ik::IkBranch<{n}>)) {{ for b in {seeded}.iter() {{ f(b); }} }}\n}}\n"
+    )
+}
+
 fn doc_lines(out: &mut String, doc: &str) {
     for line in doc.lines() {
         let _ = writeln!(out, "///{}{line}", if line.is_empty() { "" } else { " " });
@@ -185,6 +237,14 @@ fn method(out: &mut String, m: &Method, qty: &str) {
                 out,
                 "#[inline]\n#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\nlet _ = {unused};\n{}\n{result}\n}}",
                 body.lets.join("\n"),
+            );
+        }
+        MethodBody::Custom { args, lets, result } => {
+            doc_lines(out, doc);
+            let _ = writeln!(
+                out,
+                "#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\n{}\n{result}\n}}",
+                lets.join("\n"),
             );
         }
         MethodBody::Expr(e) => {

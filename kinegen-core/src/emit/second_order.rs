@@ -177,21 +177,37 @@ impl Out<'_> {
     /// cosines twice, and the code stays small).
     pub(super) fn manipulability_gradients(&mut self) {
         let n = self.n();
-        let measure = if n < 6 {
-            "`m = √det(Jᵀ J)` (with fewer than six joints `J Jᵀ` is singular everywhere; this is \
-             the measure `kinegen::manipulability::manipulability` takes)"
+        let measure = "Yoshikawa's manipulability `m = √det(J Jᵀ)` of the world-frame Jacobian \
+                       (`kinegen::manipulability::manipulability`, the Robotics Toolbox's \
+                       `manipulability(q)`)";
+        if n < 6 {
+            // J Jᵀ (6×6) has rank ≤ N < 6: m is identically 0.
+            let doc = format!(
+                "Gradient of {measure}: with {n} joints `J Jᵀ` has rank ≤ {n} < 6, so `m` is \
+                 identically 0 and so is its gradient.{}",
+                if self.chain.task.is_some() {
+                    " The measure to climb is the task rows' one, \
+                     [`Self::manipulability_task_gradient`]."
+                } else {
+                    ""
+                }
+            );
+            self.expr_method(
+                doc,
+                "manipulability_gradient",
+                format!("let _ = q; [0.0; {n}]"),
+            );
         } else {
-            "`m = √det(J Jᵀ)`"
-        };
-        let doc = format!(
-            "Gradient of Yoshikawa's manipulability {measure} of the world-frame Jacobian: \
-             `∂m/∂q_j = m·tr(J⁺·H[j])`, from [`Self::jacobian`] and [`Self::hessian`] and the \
-             stack-only SVD of `kinegen::manipulability::manipulability_gradient`. At a singular \
-             configuration (m = 0) m is not differentiable and the result is 0, the least \
-             element of its generalised gradient. NaN for non-finite `q`."
-        );
-        let call = self.gradient_call("&self.jacobian(q)", "&self.hessian(q)");
-        self.expr_method(doc, "manipulability_gradient", call);
+            let doc = format!(
+                "Gradient of {measure}: `∂m/∂q_j = m·tr(J⁺·H[j])`, from [`Self::jacobian`] and \
+                 [`Self::hessian`] and the stack-only SVD of \
+                 `kinegen::manipulability::manipulability_gradient`. At a singular configuration \
+                 (m = 0) m is not differentiable and the result is 0, the least element of its \
+                 generalised gradient. NaN for non-finite `q`."
+            );
+            let call = self.gradient_call("&self.jacobian(q)", "&self.hessian(q)");
+            self.expr_method(doc, "manipulability_gradient", call);
+        }
         let Some(task) = &self.chain.task else {
             return;
         };
@@ -199,7 +215,7 @@ impl Out<'_> {
         let names: Vec<&str> = task.iter().map(|r| r.name()).collect();
         let doc = format!(
             "Gradient of the task manipulability `m = √det(Jt Jtᵀ)` of [`Self::task_jacobian`] \
-             `Jt` (rows `[{}]`; `√det(Jtᵀ Jt)` when it has more rows than joints): `∂m/∂q_j = \
+             `Jt` (rows `[{}]`; identically 0, and so its gradient, when it has more rows than joints): `∂m/∂q_j = \
              m·tr(Jt⁺·Ht[j])` with `Ht[j]` the same rows of [`Self::hessian`]. At a singular \
              configuration (m = 0) the result is 0, the least element of the generalised \
              gradient. NaN for non-finite `q`.",

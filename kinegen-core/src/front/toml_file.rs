@@ -21,6 +21,7 @@
 //! alpha = 0
 //! d = 0
 //! limits = ["-pi", "pi"]
+//! flip = true                      # optional: θ = −q + θ₀ (the joint runs against z)
 //! [tool]                           # optional, likewise [base]
 //! xyz = [0, 0, 0.1]
 //! rpy = [0, 0, "pi/2"]
@@ -37,7 +38,7 @@
 //! assert_eq!(
 //!     err.to_string(),
 //!     "r.toml:3: joints[0]: missing column `alpha`\n\
-//!      r.toml:6: joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset or limits"
+//!      r.toml:6: joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset, limits or flip"
 //! );
 //! ```
 
@@ -49,64 +50,27 @@ use std::path::Path as FsPath;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use toml::Spanned;
 
+use crate::chain::Chain;
+pub use crate::front::located::{LoadError, LocatedError};
+use crate::front::urdf::Urdf;
+use crate::front::urdf_robot::{self, Problem, UrdfOptions, URDF_KEYS};
 use crate::model::dh::Robot;
 use crate::model::input;
 use crate::model::options::{Budget, Options};
 use crate::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
 use crate::model::validate::validate;
 
-/// An error at a line of a file: renders as `file:LINE: path: message`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LocatedError {
-    /// The file as the user named it.
-    pub file: String,
-    /// 1-based line; 0 when the file could not be read at all.
-    pub line: usize,
-    /// Where in the model (the root for whole-file problems).
-    pub path: Path,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for LocatedError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        // Line 0: the problem is with the file as a whole (it cannot be read).
-        if self.line == 0 {
-            write!(f, "{}: ", self.file)?;
-        } else {
-            write!(f, "{}:{}: ", self.file, self.line)?;
-        }
-        if !self.path.0.is_empty() {
-            write!(f, "{}: ", self.path)?;
-        }
-        f.write_str(&self.message)
-    }
-}
-
-/// Why a file did not load: every problem found, one per line when displayed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LoadError {
-    /// The problems, in file order where the parser allows.
-    pub errors: Vec<LocatedError>,
-}
-
-impl fmt::Display for LoadError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, e) in self.errors.iter().enumerate() {
-            if i > 0 {
-                f.write_str("\n")?;
-            }
-            write!(f, "{e}")?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for LoadError {}
-
 /// Load and check a robot from TOML text. `file_label` names the file in messages.
 pub fn load_str(src: &str, file_label: &str) -> Result<(Robot, Options), LoadError> {
     let file = RawFile::parse(src, file_label)?;
+    if file.urdf.is_some() {
+        return Err(LoadError::at(
+            file_label,
+            file.line_of(&Path::root().key("urdf")),
+            Path::root().key("urdf"),
+            "this file names a URDF, not a DH table: load it with `load_description_file`",
+        ));
+    }
     let checks = match validate(&file.robot) {
         Ok(robot) if file.shape_errors.is_empty() => {
             let options = Options {
@@ -140,6 +104,87 @@ pub fn load_file(path: &FsPath) -> Result<(Robot, Options), LoadError> {
     }
 }
 
+/// What a robot file describes: a DH table, or a chain of a URDF.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Description {
+    /// A DH table (`[[joints]]`).
+    Dh(Box<Robot>),
+    /// A chain of the URDF the file names (`urdf = "…"`).
+    Urdf(Box<Chain>),
+}
+
+impl Description {
+    /// The engine's input.
+    pub fn chain(&self) -> Chain {
+        match self {
+            Description::Dh(r) => r.chain(),
+            Description::Urdf(c) => (**c).clone(),
+        }
+    }
+}
+
+/// Load a robot file of either kind; a URDF it names is read relative to its directory.
+pub fn load_description_file(path: &FsPath) -> Result<(Description, Options), LoadError> {
+    let label = path.display().to_string();
+    let src = std::fs::read_to_string(path).map_err(|e| {
+        LoadError::at(
+            &label,
+            0,
+            Path::root(),
+            format!("cannot read the file: {e}"),
+        )
+    })?;
+    let dir = path.parent().unwrap_or(FsPath::new("")).to_path_buf();
+    let read = |rel: &str| {
+        let p = dir.join(rel);
+        std::fs::read_to_string(&p)
+            .map(|s| (p.display().to_string(), s))
+            .map_err(|e| format!("cannot read `{}`: {e}", p.display()))
+    };
+    load_description_str(&src, &label, &read)
+}
+
+/// The text a URDF file holds, and its label for messages, by the path a robot file
+/// gives (`read("urdf/ur5.urdf")`).
+pub type ReadUrdf<'a> = &'a dyn Fn(&str) -> Result<(String, String), String>;
+
+/// Load a robot file of either kind from text; `read` gives the URDF it names.
+pub fn load_description_str(
+    src: &str,
+    file_label: &str,
+    read: ReadUrdf,
+) -> Result<(Description, Options), LoadError> {
+    let file = RawFile::parse(src, file_label)?;
+    let Some((rel, options)) = &file.urdf else {
+        return load_str(src, file_label).map(|(r, o)| (Description::Dh(Box::new(r)), o));
+    };
+    if !file.shape_errors.is_empty() {
+        return Err(file.locate_all(file.shape_errors.clone()));
+    }
+    let at_key = |message: String| {
+        file.locate_all(vec![DhError {
+            path: Path::root().key("urdf"),
+            message,
+        }])
+    };
+    let (label, text) = read(rel).map_err(at_key)?;
+    let urdf = Urdf::parse(&text, &label)?;
+    let chain = urdf_robot::chain(&urdf, options).map_err(|problems| LoadError {
+        errors: problems
+            .into_iter()
+            .map(|p| match p {
+                Problem::Option(e) => file.locate(e),
+                Problem::File(e) => e,
+            })
+            .collect(),
+    })?;
+    let options = Options {
+        budget: file.budget.unwrap_or_default(),
+        ..Options::default()
+    };
+    Ok((Description::Urdf(Box::new(chain)), options))
+}
+
 /// A TOML robot before validation, with the line of every entry.
 ///
 /// Front ends that merge a file with other input (the macro's file form with overrides)
@@ -153,6 +198,9 @@ pub struct RawFile {
     pub budget: Option<Budget>,
     /// Top-level keys present in the file.
     pub keys: Vec<String>,
+    /// `urdf = "…"` and the options for it, when the file names a URDF instead of a DH
+    /// table (then [`RawFile::robot`] is empty).
+    pub urdf: Option<(String, UrdfOptions)>,
     /// Entries of the wrong kind (a string where a table belongs, unknown keys, …),
     /// to be reported with [`crate::model::validate::validate`]'s errors through
     /// [`input::combine_errors`].
@@ -174,6 +222,7 @@ impl RawFile {
             robot: RawRobot::default(),
             budget: None,
             keys: Vec::new(),
+            urdf: None,
             shape_errors: Vec::new(),
             label: file_label.to_string(),
             line_starts,
@@ -204,7 +253,13 @@ impl RawFile {
             spans: &mut file.spans,
             errors: Vec::new(),
         };
-        reader.root(&root, &mut file.robot, &mut file.budget, &mut file.keys);
+        let names_urdf =
+            matches!(root.get_ref(), Node::Table(e) if e.iter().any(|(k, _)| k == "urdf"));
+        if names_urdf {
+            file.urdf = reader.urdf_root(&root, &mut file.budget, &mut file.keys);
+        } else {
+            reader.root(&root, &mut file.robot, &mut file.budget, &mut file.keys);
+        }
         file.shape_errors = reader.errors;
         Ok(file)
     }
@@ -250,7 +305,7 @@ enum Node {
     Str(String),
     Int(i64),
     Float(f64),
-    Bool,
+    Bool(bool),
     Datetime,
     Array(Vec<Spanned<Node>>),
     Table(Vec<(String, Spanned<Node>)>),
@@ -261,7 +316,7 @@ impl Node {
         match self {
             Node::Str(_) => "a string",
             Node::Int(_) | Node::Float(_) => "a number",
-            Node::Bool => "a boolean",
+            Node::Bool(_) => "a boolean",
             Node::Datetime => "a date",
             Node::Array(_) => "a list",
             Node::Table(_) => "a table",
@@ -288,8 +343,8 @@ impl<'de> Visitor<'de> for NodeVisitor {
         f.write_str("a TOML value")
     }
 
-    fn visit_bool<E: de::Error>(self, _: bool) -> Result<Node, E> {
-        Ok(Node::Bool)
+    fn visit_bool<E: de::Error>(self, v: bool) -> Result<Node, E> {
+        Ok(Node::Bool(v))
     }
 
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<Node, E> {
@@ -402,6 +457,67 @@ impl Reader<'_> {
         }
     }
 
+    /// A file that names a URDF: `urdf`, `base`, `tip`, `snap`, named lengths and the
+    /// shared options.
+    fn urdf_root(
+        &mut self,
+        node: &Spanned<Node>,
+        budget: &mut Option<Budget>,
+        keys: &mut Vec<String>,
+    ) -> Option<(String, UrdfOptions)> {
+        let Node::Table(entries) = node.get_ref() else {
+            return None;
+        };
+        let mut o = UrdfOptions::default();
+        let mut file = None;
+        for (key, value) in entries {
+            let p = Path::root().key(key);
+            self.mark(&p, value);
+            keys.push(key.clone());
+            match key.as_str() {
+                "urdf" => file = self.string(value, &p),
+                "name" => o.name = self.string(value, &p),
+                "base" => o.base = self.string(value, &p),
+                "tip" => o.tip = self.string(value, &p),
+                "scalar" => o.scalar = self.string(value, &p),
+                "snap" => match value.get_ref() {
+                    Node::Float(x) => o.snap = Some(*x),
+                    Node::Int(i) => o.snap = Some(*i as f64),
+                    other => self.err(
+                        p,
+                        format!(
+                            "`snap` is a tolerance in radians / metres, found {}",
+                            other.kind()
+                        ),
+                    ),
+                },
+                "params" => o.params = self.entries(value, &p).unwrap_or_default(),
+                "task" => {
+                    o.task = self.value(value, &p).map(|v| match v {
+                        RawValue::List(items) => items,
+                        other => vec![other],
+                    })
+                }
+                "budget" => *budget = self.budget(value, &p),
+                "convention" | "joints" | "tool" => self.err(
+                    p,
+                    format!(
+                        "`{key}` belongs to a DH table; a file with `urdf` takes {}",
+                        URDF_KEYS.join(", ")
+                    ),
+                ),
+                _ => self.err(
+                    p,
+                    format!(
+                        "unknown key `{key}`: a file with `urdf` takes {}",
+                        URDF_KEYS.join(", ")
+                    ),
+                ),
+            }
+        }
+        file.map(|f| (f, o))
+    }
+
     fn string(&mut self, node: &Spanned<Node>, path: &Path) -> Option<String> {
         match node.get_ref() {
             Node::Str(s) => Some(s.clone()),
@@ -488,6 +604,9 @@ impl Reader<'_> {
                 if key == "type" {
                     self.mark(&kp, value);
                     joint.kind = self.string(value, &kp);
+                } else if let (Node::Bool(b), "flip") = (value.get_ref(), key.as_str()) {
+                    self.mark(&kp, value);
+                    joint.fields.push((key.clone(), RawValue::Bool(*b)));
                 } else if let Some(v) = self.value(value, &kp) {
                     joint.fields.push((key.clone(), v));
                 }

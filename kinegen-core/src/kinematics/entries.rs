@@ -1,7 +1,8 @@
 //! A chain's entries as graph nodes: lengths (rational constants plus parameters), joint
 //! angles and constant angles.
 //!
-//! Angles whose value is a multiple of π/6 or π/4 fold to exact constants in ℚ[√2, √3]
+//! Angles whose value is a multiple of π/12 (π/6, π/4 among them) fold to exact
+//! constants in ℚ[√2, √3]
 //! (a twist of π/2 has cosine exactly 0, and whole terms vanish); a joint offset that is
 //! a multiple of π/2 folds into the joint's own sine and cosine; any other constant
 //! angle, or one that names a parameter, becomes a sine/cosine pair of its own.
@@ -116,7 +117,7 @@ impl Entries {
         }
     }
 
-    /// A constant angle: exact for multiples of π/6 and π/4, else its own pair.
+    /// A constant angle: exact for multiples of π/12 (so of π/6 and π/4), else its own pair.
     pub fn const_angle(&mut self, value: &Value) -> (Id, Id) {
         if value.konst.is_zero() && value.params.is_empty() {
             if let Some((s, c)) = self.exact_sin_cos(&value.pi) {
@@ -128,7 +129,8 @@ impl Entries {
         self.new_angle(AngleSource::Constant(value.clone()), suffix)
     }
 
-    /// sin and cos of `t·π` when t is a multiple of 1/4 or 1/6.
+    /// sin and cos of `t·π` when t is a multiple of 1/4 or 1/6 (so also of 1/12): exact
+    /// values in ℚ[√2, √3], e.g. sin(π/12) = (√6 − √2)/4.
     fn exact_sin_cos(&mut self, t: &Rat) -> Option<(Id, Id)> {
         let two = Rat::from_integer(2.into());
         // t mod 2 in [0, 2)
@@ -145,36 +147,53 @@ impl Entries {
             t = Rat::one() - t;
             sign_c = -sign_c;
         }
-        let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
-        // (rational part, √k part) of sin and cos for t in [0, 1/2].
-        type Surd = (Rat, u32);
-        let table: [(Rat, Surd, Surd); 5] = [
-            (r(0, 1), (r(0, 1), 1), (r(1, 1), 1)),
-            (r(1, 6), (r(1, 2), 1), (r(1, 2), 3)),
-            (r(1, 4), (r(1, 2), 2), (r(1, 2), 2)),
-            (r(1, 3), (r(1, 2), 3), (r(1, 2), 1)),
-            (r(1, 2), (r(1, 1), 1), (r(0, 1), 1)),
+        let twelfths = &t * Rat::from_integer(12.into());
+        if !twelfths.is_integer() {
+            return None;
+        }
+        let k = num_traits::ToPrimitive::to_usize(&twelfths.to_integer())?;
+        let r = |n: i64| Rat::new(n.into(), 4.into());
+        // sin(kπ/12) for k = 0..=6 as quarters of √1, √2, √3, √6; cos(kπ/12) = sin((6−k)π/12).
+        let sines: [[Rat; 4]; 7] = [
+            [r(0), r(0), r(0), r(0)],
+            [r(0), r(-1), r(0), r(1)],
+            [r(2), r(0), r(0), r(0)],
+            [r(0), r(2), r(0), r(0)],
+            [r(0), r(0), r(2), r(0)],
+            [r(0), r(1), r(0), r(1)],
+            [r(4), r(0), r(0), r(0)],
         ];
-        let (_, (sk, sq), (ck, cq)) = table.into_iter().find(|(x, _, _)| *x == t)?;
-        let s = self.surd(&(sk * sign_s), sq);
-        let c = self.surd(&(ck * sign_c), cq);
+        let s = self.surds(&sines[k], &sign_s);
+        let c = self.surds(&sines[6 - k], &sign_c);
         Some((s, c))
     }
 
-    /// `k·√n` (n = 1 means the rational k).
-    fn surd(&mut self, k: &Rat, n: u32) -> Id {
-        let kk = self.graph.num(k.abs());
-        let x = if n == 1 {
-            kk
-        } else {
-            let v = self.graph.ring.sqrt(n);
-            let l = self.graph.leaf(v);
-            self.graph.mul(kk, l)
-        };
-        if k.is_negative() {
-            self.graph.neg(x)
-        } else {
-            x
+    /// `sign · (k1 + k2·√2 + k3·√3 + k6·√2·√3)` for `k = [k1, k2, k3, k6]`.
+    fn surds(&mut self, k: &[Rat; 4], sign: &Rat) -> Id {
+        let mut terms = Vec::new();
+        for (coef, roots) in k.iter().zip([&[][..], &[2], &[3], &[2, 3]]) {
+            if coef.is_zero() {
+                continue;
+            }
+            let c = coef * sign;
+            let mut x = self.graph.num(c.abs());
+            for &n in roots {
+                let v = self.graph.ring.sqrt(n);
+                let l = self.graph.leaf(v);
+                x = self.graph.mul(x, l);
+            }
+            terms.push(if c.is_negative() {
+                self.graph.neg(x)
+            } else {
+                x
+            });
+        }
+        match terms.as_slice() {
+            [] => self.graph.int(0),
+            [a] => *a,
+            // sin(π/12) = (√6 − √2)/4: the difference, not a sum with a negation.
+            [a, b] => self.graph.add(*a, *b),
+            _ => self.graph.sum(&terms),
         }
     }
 }
@@ -208,5 +227,28 @@ mod tests {
             assert!((b.graph.eval(ci, &val) - c).abs() < 1e-15, "cos {t}");
         }
         assert!(b.exact_sin_cos(&Rat::new(1.into(), 5.into())).is_none());
+        assert!(b.exact_sin_cos(&Rat::new(1.into(), 24.into())).is_none());
+    }
+
+    /// Every multiple of π/12 over two turns, against `f64::sin_cos`, and its normal form
+    /// squares to one exactly (s² + c² = 1 in ℚ[√2, √3]).
+    #[test]
+    fn twelfths_of_pi_are_exact() {
+        let mut b = Entries::new(Graph::default());
+        for k in -24..=24 {
+            let t = Rat::new(k.into(), 12.into());
+            let (si, ci) = b.exact_sin_cos(&t).unwrap();
+            let ring = b.graph.ring.clone();
+            let val = |v: Var| match ring.kind(v) {
+                crate::algebra::poly::VarKind::Sqrt(k) => (*k as f64).sqrt(),
+                _ => f64::NAN,
+            };
+            let (s, c) = (f64::from(k) * std::f64::consts::PI / 12.0).sin_cos();
+            assert!((b.graph.eval(si, &val) - s).abs() < 1e-15, "sin {k}π/12");
+            assert!((b.graph.eval(ci, &val) - c).abs() < 1e-15, "cos {k}π/12");
+            let (ss, cc) = (b.graph.mul(si, si), b.graph.mul(ci, ci));
+            let one = b.graph.add(ss, cc);
+            assert_eq!(b.graph.as_num(one), Some(&Rat::one()), "s² + c² at {k}π/12");
+        }
     }
 }

@@ -6,9 +6,10 @@
 //! and shares equal values. Optionally the tail of the chain is built in a middle frame
 //! ([`Pivot`]) and rotated out once at the end.
 
-use crate::algebra::angles::AngleDef;
+use crate::algebra::angles::{AngleDef, AngleSource};
 use crate::algebra::graph::{Graph, Id};
 use crate::algebra::poly::Var;
+use crate::algebra::poly::VarKind;
 use crate::chain::{AxisAt, Chain, Elem, Link, Motion};
 use crate::kinematics::entries::Entries;
 use crate::kinematics::transform::{compose, point, rotate, translate, turn, Transform};
@@ -58,6 +59,24 @@ pub struct Pivot {
     pub tool: Transform,
 }
 
+/// Which joints are variables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Joints {
+    /// All of them.
+    Variable,
+    /// None but `keep`: the others are at `q = 0`.
+    Zero { keep: Option<usize> },
+}
+
+impl Joints {
+    fn variable(self, i: usize) -> bool {
+        match self {
+            Joints::Variable => true,
+            Joints::Zero { keep } => keep == Some(i),
+        }
+    }
+}
+
 /// An elementary transform with its arguments as nodes.
 #[derive(Clone, Copy, Debug)]
 enum Step {
@@ -81,6 +100,25 @@ impl SymbolicChain {
         pivot: Option<usize>,
         deadline: Deadline,
     ) -> (SymbolicChain, Option<Pivot>) {
+        SymbolicChain::build_with(chain, max_terms, pivot, deadline, Joints::Variable)
+    }
+
+    /// The frames at `q = 0`: every joint fixed at its zero (its offset), except joint
+    /// `keep` (0-based), which stays a variable. Axes, points and the tool are then
+    /// constants — polynomials in the parameters (and in `keep`'s sine and cosine) — whose
+    /// exact normal forms decide which joint axes are parallel or meet.
+    pub fn at_zero(chain: &Chain, max_terms: usize, keep: Option<usize>) -> SymbolicChain {
+        let joints = Joints::Zero { keep };
+        SymbolicChain::build_with(chain, max_terms, None, Deadline::never(), joints).0
+    }
+
+    fn build_with(
+        chain: &Chain,
+        max_terms: usize,
+        pivot: Option<usize>,
+        deadline: Deadline,
+        joints: Joints,
+    ) -> (SymbolicChain, Option<Pivot>) {
         let mut graph = Graph::new(Default::default(), max_terms);
         graph.deadline = deadline;
         let mut b = Entries::new(graph);
@@ -100,7 +138,7 @@ impl SymbolicChain {
                 t = Transform::identity(&mut b.graph);
             }
             let axis;
-            (t, axis) = unroll(&mut b, t, i, link);
+            (t, axis) = unroll(&mut b, t, i, link, joints.variable(i));
             match &world {
                 Some(w) => {
                     local_axes.push(axis);
@@ -157,6 +195,61 @@ impl SymbolicChain {
             })
             .collect()
     }
+
+    /// Values of the ring's variables at joint values `q` with the chain's parameters:
+    /// what the generated code computes before its first operation. Used to evaluate
+    /// the symbolic outputs directly (tests, the CLI's `eval`). Joint rates are NaN (see
+    /// [`SymbolicChain::variables_with_rates`]).
+    pub fn variables(&self, chain: &Chain, q: &[f64]) -> Vec<f64> {
+        self.variables_with_rates(chain, q, None)
+    }
+
+    /// [`SymbolicChain::variables`] with joint rates `qd` for the outputs that read them
+    /// (`None`: NaN, so a rate-dependent value cannot pass for a number).
+    pub fn variables_with_rates(&self, chain: &Chain, q: &[f64], qd: Option<&[f64]>) -> Vec<f64> {
+        let ring = &self.graph.ring;
+        let mut vals = vec![f64::NAN; ring.len()];
+        for (v, slot) in vals.iter_mut().enumerate() {
+            *slot = match ring.kind(v as u32) {
+                VarKind::Joint(j) => q[*j],
+                VarKind::Rate(j) => qd.map_or(f64::NAN, |qd| qd[*j]),
+                VarKind::Param(n) => chain.param_value(n),
+                VarKind::Sqrt(k) => (*k as f64).sqrt(),
+                VarKind::Sin(_) | VarKind::Cos(_) => continue,
+            };
+        }
+        for a in &self.angles {
+            let x = match &a.source {
+                AngleSource::Joint {
+                    joint,
+                    sign,
+                    offset,
+                } => f64::from(*sign) * q[*joint] + chain.eval(offset),
+                AngleSource::Constant(v) => chain.eval(v),
+            };
+            vals[a.vars.0 as usize] = x.sin();
+            vals[a.vars.1 as usize] = x.cos();
+        }
+        vals
+    }
+
+    /// Evaluate nodes at `q`.
+    pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
+        self.eval_with_rates(chain, q, None, ids)
+    }
+
+    /// Evaluate nodes at `q` and joint rates `qd` (`None`: rates are NaN), sharing the
+    /// values of common intermediates between them.
+    pub fn eval_with_rates(
+        &self,
+        chain: &Chain,
+        q: &[f64],
+        qd: Option<&[f64]>,
+        ids: &[Id],
+    ) -> Vec<f64> {
+        let vals = self.variables_with_rates(chain, q, qd);
+        self.graph.eval_all(ids, &|v| vals[v as usize])
+    }
 }
 
 /// One link onto frame `t`: the new frame, and the joint's axis and a point on it.
@@ -164,8 +257,23 @@ impl SymbolicChain {
 /// The link's entries become nodes first, outward from the joint (its motion, the
 /// transforms after it, then those before it, nearest first: θ, d, a, α for a DH row in
 /// either convention); the order only decides how the generated code orders operands.
-fn unroll(b: &mut Entries, t: Transform, i: usize, link: &Link) -> (Transform, ([Id; 3], [Id; 3])) {
-    let motion = motion(b, i, &link.motion);
+fn unroll(
+    b: &mut Entries,
+    t: Transform,
+    i: usize,
+    link: &Link,
+    variable: bool,
+) -> (Transform, ([Id; 3], [Id; 3])) {
+    let motion = if variable {
+        motion(b, i, &link.motion)
+    } else {
+        // At q = 0 the joint is its offset.
+        let axis = link.motion.axis;
+        match link.motion.kind {
+            JointKind::Revolute => step(b, &Elem::Rot(axis, link.motion.offset.clone())),
+            JointKind::Prismatic => step(b, &Elem::Trans(axis, link.motion.offset.clone())),
+        }
+    };
     let after = fixed(b, &link.after);
     let mut before: Vec<Step> = link.before.iter().rev().map(|e| step(b, e)).collect();
     before.reverse();

@@ -9,11 +9,13 @@
 //! - [`hessian`]: `H[j] = ∂J/∂q_j` from the Jacobian's columns.
 //! - [`jdot`]: `J̇`, `J̇ q̇` and the tool-frame `J̇_ee`, accumulated over the joints.
 //! - [`second_order`]: the second-order outputs of a model, together.
+//! - [`ik`]: closed-form inverse kinematics: family, derivation, zero-configuration geometry.
 
 pub mod det;
 pub mod entries;
 pub mod frames;
 pub mod hessian;
+pub mod ik;
 pub mod jacobian;
 pub mod jdot;
 pub mod model;

@@ -5,9 +5,7 @@
 //! [`crate::kinematics::frames::Pivot`]); the simplify stage rewrites their
 //! expressions ([`Model::set_ids`]) without changing a value.
 
-use crate::algebra::angles::AngleSource;
 use crate::algebra::graph::Id;
-use crate::algebra::poly::VarKind;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
 use crate::kinematics::jacobian::{self, LocalColumns, Rows};
@@ -177,49 +175,19 @@ impl Model {
 }
 
 impl Model {
-    /// Values of the ring's variables at joint values `q` with the chain's parameters:
-    /// what the generated code computes before its first operation. Used to evaluate
-    /// the symbolic outputs directly (tests, the CLI's `eval`). Joint rates are NaN
-    /// (see [`Model::variables_with_rates`]).
+    /// Values of the ring's variables at joint values `q` with the chain's parameters
+    /// (see [`SymbolicChain::variables`]).
     pub fn variables(&self, chain: &Chain, q: &[f64]) -> Vec<f64> {
-        self.variables_with_rates(chain, q, None)
-    }
-
-    /// [`Model::variables`] with joint rates `qd` for the outputs that read them
-    /// (`None`: NaN, so a rate-dependent value cannot pass for a number).
-    pub fn variables_with_rates(&self, chain: &Chain, q: &[f64], qd: Option<&[f64]>) -> Vec<f64> {
-        let ring = &self.sym.graph.ring;
-        let mut vals = vec![f64::NAN; ring.len()];
-        for (v, slot) in vals.iter_mut().enumerate() {
-            *slot = match ring.kind(v as u32) {
-                VarKind::Joint(j) => q[*j],
-                VarKind::Rate(j) => qd.map_or(f64::NAN, |qd| qd[*j]),
-                VarKind::Param(n) => chain.param_value(n),
-                VarKind::Sqrt(k) => (*k as f64).sqrt(),
-                VarKind::Sin(_) | VarKind::Cos(_) => continue,
-            };
-        }
-        for a in &self.sym.angles {
-            let x = match &a.source {
-                AngleSource::Joint {
-                    joint,
-                    sign,
-                    offset,
-                } => f64::from(*sign) * q[*joint] + chain.eval(offset),
-                AngleSource::Constant(v) => chain.eval(v),
-            };
-            vals[a.vars.0 as usize] = x.sin();
-            vals[a.vars.1 as usize] = x.cos();
-        }
-        vals
+        self.sym.variables(chain, q)
     }
 
     /// Evaluate nodes at `q`.
     pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
-        self.eval_with_rates(chain, q, None, ids)
+        self.sym.eval(chain, q, ids)
     }
 
-    /// Evaluate nodes at `q` and joint rates `qd` (`None`: rates are NaN).
+    /// Evaluate nodes at `q` and joint rates `qd` (`None`: rates are NaN; see
+    /// [`SymbolicChain::eval_with_rates`]).
     pub fn eval_with_rates(
         &self,
         chain: &Chain,
@@ -227,11 +195,6 @@ impl Model {
         qd: Option<&[f64]>,
         ids: &[Id],
     ) -> Vec<f64> {
-        let vals = self.variables_with_rates(chain, q, qd);
-        let g = &self.sym.graph;
-        let mut memo = vec![None; g.len()];
-        ids.iter()
-            .map(|&id| g.eval_memo(id, &|v| vals[v as usize], &mut memo))
-            .collect()
+        self.sym.eval_with_rates(chain, q, qd, ids)
     }
 }

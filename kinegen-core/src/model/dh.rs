@@ -16,7 +16,8 @@ pub enum Convention {
 }
 
 /// A checked joint. Offsets are folded into `theta` (revolute) or `d` (prismatic):
-/// the joint variable `q_i` is added to that entry.
+/// the joint variable `q_i` is added to that entry — or, for a flipped joint,
+/// subtracted from it (θ = −q_i + theta, as the Robotics Toolbox's `flip`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Joint {
     /// Revolute or prismatic.
@@ -29,8 +30,10 @@ pub struct Joint {
     pub d: Value,
     /// Joint angle `θ`; for a revolute joint, the constant added to `q_i`.
     pub theta: Value,
-    /// Joint limits `[min, max]` (radians or metres), if given.
+    /// Joint limits `[min, max]` (radians or metres), if given: always on the user's `q_i`.
     pub limits: Option<[f64; 2]>,
+    /// The joint runs against its axis: θ (or d) = −q_i + the entry.
+    pub flip: bool,
 }
 
 /// A fixed transform `Trans(xyz) · Rz(yaw) · Ry(pitch) · Rx(roll)`, as in URDF.

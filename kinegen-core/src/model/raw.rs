@@ -70,6 +70,8 @@ pub enum RawValue {
     Number(f64),
     /// A list (`limits`, `xyz`, `rpy`, `task`).
     List(Vec<RawValue>),
+    /// `true` / `false` (the `flip` column).
+    Bool(bool),
 }
 
 /// A joint row as written: `type` and the columns in the order given.
@@ -77,7 +79,8 @@ pub enum RawValue {
 pub struct RawJoint {
     /// `revolute` / `prismatic` as written, if given.
     pub kind: Option<String>,
-    /// Columns: `a`, `alpha`, `d`, `theta`, `offset`, `limits`, or unknown ones (an error).
+    /// Columns: `a`, `alpha`, `d`, `theta`, `offset`, `limits`, `flip`, or unknown ones
+    /// (an error).
     pub fields: Vec<(String, RawValue)>,
 }
 

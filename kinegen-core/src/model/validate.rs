@@ -10,6 +10,9 @@ use crate::model::raw::{DhError, Path, RawJoint, RawRobot, RawValue};
 use crate::model::robot::{JointKind, Param, Scalar, TaskRow};
 use crate::model::value::{parse_value, Value};
 
+/// The columns of a joint row.
+const COLUMNS: &[&str] = &["a", "alpha", "d", "theta", "offset", "limits", "flip"];
+
 /// Identifiers that cannot be parameter names.
 const RESERVED: &[&str] = &["pi", "PI", "q", "self", "Self", "crate", "super"];
 
@@ -47,6 +50,60 @@ pub fn is_identifier(s: &str) -> bool {
     matches!(ch.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
         && ch.all(|c| c.is_ascii_alphanumeric() || c == '_')
         && s != "_"
+}
+
+/// Why `name` cannot name a parameter (a struct field of the generated type), if it
+/// cannot: not an identifier, `pi`/`q`, a joint variable, a Rust keyword, or a name the
+/// generated code binds itself.
+pub fn param_name_problem(name: &str) -> Option<String> {
+    if !is_identifier(name) || RESERVED.contains(&name) {
+        return Some(format!(
+            "`{name}` cannot name a parameter: use an identifier other than `pi` or `q`"
+        ));
+    }
+    if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit()) {
+        return Some(format!(
+            "`{name}` is the name of a joint variable; choose another parameter name"
+        ));
+    }
+    if name
+        .strip_prefix("qd")
+        .is_some_and(|j| j.bytes().all(|b| b.is_ascii_digit()))
+    {
+        return Some(format!(
+            "`{name}` is the name of the joint rates (`qd`, `qd1`, …); choose another \
+             parameter name"
+        ));
+    }
+    if is_rust_keyword(name) {
+        return Some(format!(
+            "`{name}` is a Rust keyword; choose another parameter name"
+        ));
+    }
+    if is_generated_local(name) {
+        return Some(format!(
+            "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23`/`nc23` angle \
+             sums, `t4` intermediates); choose another parameter name"
+        ));
+    }
+    None
+}
+
+/// Check the options every description shares, `task` and `scalar`, of a robot that
+/// has no DH table (a URDF): the rows and the scalar type, or every problem.
+pub fn task_and_scalar(raw: &RawRobot) -> Result<(Option<Vec<TaskRow>>, Scalar), Vec<DhError>> {
+    let mut v = Validator {
+        errors: Vec::new(),
+        params: BTreeSet::new(),
+    };
+    let root = Path::root();
+    let scalar = v.scalar(raw.scalar.as_deref(), &root);
+    let task = raw.task.as_ref().map(|t| v.task(t, &root.key("task")));
+    if v.errors.is_empty() {
+        Ok((task, scalar))
+    } else {
+        Err(v.errors)
+    }
 }
 
 /// Check a raw robot. Returns every problem found, in input order.
@@ -105,17 +162,7 @@ impl Validator {
                 Convention::Standard
             }
         };
-        let scalar = match raw.scalar.as_deref() {
-            None | Some("f64") => Scalar::F64,
-            Some("f32") => Scalar::F32,
-            Some(other) => {
-                self.err(
-                    root.key("scalar"),
-                    format!("unknown scalar type `{other}`: expected `f64` or `f32`"),
-                );
-                Scalar::F64
-            }
-        };
+        let scalar = self.scalar(raw.scalar.as_deref(), root);
         let params = self.params(&raw.params, &root.key("params"));
         if raw.joints.is_empty() {
             self.err(root.key("joints"), "the DH table has no joints");
@@ -145,54 +192,26 @@ impl Validator {
         robot
     }
 
+    fn scalar(&mut self, raw: Option<&str>, root: &Path) -> Scalar {
+        match raw {
+            None | Some("f64") => Scalar::F64,
+            Some("f32") => Scalar::F32,
+            Some(other) => {
+                self.err(
+                    root.key("scalar"),
+                    format!("unknown scalar type `{other}`: expected `f64` or `f32`"),
+                );
+                Scalar::F64
+            }
+        }
+    }
+
     fn params(&mut self, raw: &[(String, RawValue)], path: &Path) -> Vec<Param> {
         let mut out = Vec::new();
         for (name, value) in raw {
             let p = path.key(name);
-            if !is_identifier(name) || RESERVED.contains(&name.as_str()) {
-                self.err(
-                    p.clone(),
-                    format!("`{name}` cannot name a parameter: use an identifier other than `pi` or `q`"),
-                );
-                continue;
-            }
-            if name.starts_with('q') && name[1..].bytes().all(|b| b.is_ascii_digit()) {
-                self.err(
-                    p.clone(),
-                    format!(
-                        "`{name}` is the name of a joint variable; choose another parameter name"
-                    ),
-                );
-                continue;
-            }
-            if name
-                .strip_prefix("qd")
-                .is_some_and(|j| j.bytes().all(|b| b.is_ascii_digit()))
-            {
-                self.err(
-                    p.clone(),
-                    format!(
-                        "`{name}` is the name of the joint rates (`qd`, `qd1`, …); choose another \
-                         parameter name"
-                    ),
-                );
-                continue;
-            }
-            if is_rust_keyword(name) {
-                self.err(
-                    p.clone(),
-                    format!("`{name}` is a Rust keyword; choose another parameter name"),
-                );
-                continue;
-            }
-            if is_generated_local(name) {
-                self.err(
-                    p.clone(),
-                    format!(
-                        "`{name}` is a name the generated code uses (`s1`/`c1` = sin/cos, `c23`/`nc23` angle \
-                         sums, `t4` intermediates); choose another parameter name"
-                    ),
-                );
+            if let Some(problem) = param_name_problem(name) {
+                self.err(p.clone(), problem);
                 continue;
             }
             if !self.params.insert(name.clone()) {
@@ -235,6 +254,10 @@ impl Validator {
             },
             RawValue::List(_) => {
                 self.err(path.clone(), "expected a single value, found a list");
+                None
+            }
+            RawValue::Bool(b) => {
+                self.err(path.clone(), format!("expected a number, found `{b}`"));
                 None
             }
         }
@@ -287,11 +310,11 @@ impl Validator {
         let mut seen: BTreeMap<&str, &RawValue> = BTreeMap::new();
         for (key, value) in &raw.fields {
             let p = path.key(key);
-            if !["a", "alpha", "d", "theta", "offset", "limits"].contains(&key.as_str()) {
+            if !COLUMNS.contains(&key.as_str()) {
                 self.err(
                     p,
                     format!(
-                        "unknown column `{key}`: expected a, alpha, d, theta, offset or limits"
+                        "unknown column `{key}`: expected a, alpha, d, theta, offset, limits or flip"
                     ),
                 );
             } else if seen.insert(key.as_str(), value).is_some() {
@@ -323,6 +346,10 @@ impl Validator {
             JointKind::Prismatic => Quantity::Length,
         };
         let offset = get(self, "offset", offset_q);
+        let flip = match seen.get("flip") {
+            Some(raw) => self.flag(raw, &path.key("flip")),
+            None => false,
+        };
         match kind {
             JointKind::Revolute => theta = theta.add(&offset),
             JointKind::Prismatic => d = d.add(&offset),
@@ -334,6 +361,20 @@ impl Validator {
             d,
             theta,
             limits: None,
+            flip,
+        }
+    }
+
+    /// `true` or `false` (also written as text, as the macro passes it).
+    fn flag(&mut self, raw: &RawValue, path: &Path) -> bool {
+        match raw {
+            RawValue::Bool(b) => *b,
+            RawValue::Text(t) if t.trim() == "true" => true,
+            RawValue::Text(t) if t.trim() == "false" => false,
+            _ => {
+                self.err(path.clone(), "`flip` is `true` or `false`");
+                false
+            }
         }
     }
 
@@ -493,7 +534,7 @@ mod tests {
         assert_eq!(
             got,
             vec![
-                "joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset or limits",
+                "joints[0].alhpa: unknown column `alhpa`: expected a, alpha, d, theta, offset, limits or flip",
                 "joints[1].a: undefined parameter `L3`",
                 "task[1]: task row `x` given twice",
             ]

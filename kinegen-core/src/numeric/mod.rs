@@ -193,11 +193,15 @@ pub struct NumericJoint {
     pub d: f64,
     /// Joint angle (constant part for a revolute joint).
     pub theta: f64,
+    /// The joint runs against its axis (the Robotics Toolbox's `flip`): θ = −q + theta.
+    pub flip: bool,
 }
 
 impl NumericJoint {
-    /// `(θ, d)` with the joint variable added to the right one.
+    /// `(θ, d)` with the joint variable added to the right one (its negative for a
+    /// flipped joint, as RTB's `DHLink.A`: `q = -q + offset`).
     fn theta_d(&self, q: f64) -> (f64, f64) {
+        let q = if self.flip { -q } else { q };
         match self.kind {
             JointKind::Revolute => (self.theta + q, self.d),
             JointKind::Prismatic => (self.theta, self.d + q),
@@ -244,6 +248,7 @@ impl NumericRobot {
                 alpha: finite(j.alpha.eval(param), &at("alpha"))?,
                 d: finite(j.d.eval(param), &at("d"))?,
                 theta: finite(j.theta.eval(param), &at("theta"))?,
+                flip: j.flip,
             });
         }
         let frame = |f: &Option<Frame>, name: &str| -> Result<Matrix4<f64>, NumericError> {
@@ -327,6 +332,8 @@ impl NumericRobot {
                 Convention::Modified => frames[i],
             };
             let z: Vector3<f64> = axis_frame.fixed_view::<3, 1>(0, 2).into_owned();
+            // A flipped joint's positive rate turns (or slides) about −z.
+            let z = if joint.flip { -z } else { z };
             let o = position(&axis_frame);
             let (v, w) = match joint.kind {
                 JointKind::Revolute => (z.cross(&(p - o)), z),
@@ -409,15 +416,18 @@ impl NumericRobot {
             }
         };
         let actuate =
-            |i: usize, kind: JointKind, w: &mut DMatrix<f64>, v: &mut DMatrix<f64>| match kind {
-                JointKind::Revolute => w[(2, i)] += 1.0,
-                JointKind::Prismatic => v[(2, i)] += 1.0,
+            |i: usize, joint: &NumericJoint, w: &mut DMatrix<f64>, v: &mut DMatrix<f64>| {
+                let rate = if joint.flip { -1.0 } else { 1.0 };
+                match joint.kind {
+                    JointKind::Revolute => w[(2, i)] += rate,
+                    JointKind::Prismatic => v[(2, i)] += rate,
+                }
             };
         for (i, joint) in self.joints.iter().enumerate() {
             let (theta, d) = joint.theta_d(q[i]);
             match self.convention {
                 Convention::Standard => {
-                    actuate(i, joint.kind, &mut w, &mut v);
+                    actuate(i, joint, &mut w, &mut v);
                     cross(&self.link(i, q[i]), &mut w, &mut v);
                 }
                 Convention::Modified => {
@@ -426,7 +436,7 @@ impl NumericRobot {
                         &mut w,
                         &mut v,
                     );
-                    actuate(i, joint.kind, &mut w, &mut v);
+                    actuate(i, joint, &mut w, &mut v);
                     cross(&(rot_z(theta) * trans(0.0, 0.0, d)), &mut w, &mut v);
                 }
             }
@@ -444,7 +454,8 @@ impl NumericRobot {
     }
 
     /// Joint axes `z_i` and points `o_i` on them (world frame), and the tool point `p`:
-    /// what [`jacobian`](Self::jacobian) builds its columns from.
+    /// what [`jacobian`](Self::jacobian) builds its columns from (a flipped joint's axis
+    /// is `−z`, which its positive rate turns about).
     fn axes(&self, q: &[f64]) -> Result<(Vec<Axis>, Vector3<f64>), NumericError> {
         let frames = self.frames(q)?;
         let p = position(&(frames.last().copied().unwrap_or(self.base) * self.tool));
@@ -455,7 +466,9 @@ impl NumericRobot {
                     Convention::Standard => frames[i - 1],
                     Convention::Modified => frames[i],
                 };
-                (f.fixed_view::<3, 1>(0, 2).into_owned(), position(&f))
+                let z: Vector3<f64> = f.fixed_view::<3, 1>(0, 2).into_owned();
+                let z = if self.joints[i].flip { -z } else { z };
+                (z, position(&f))
             })
             .collect();
         Ok((axes, p))
@@ -572,14 +585,16 @@ impl NumericRobot {
         let mut m = Motion::default();
         for (i, joint) in self.joints.iter().enumerate() {
             let (theta, d) = joint.theta_d(q[i]);
+            // A flipped joint moves about −z at rate q̇: about z at −q̇.
+            let rate = if joint.flip { -qd[i] } else { qd[i] };
             match self.convention {
                 Convention::Standard => {
-                    m.actuate(joint.kind, qd[i]);
+                    m.actuate(joint.kind, rate);
                     m.carry(&self.link(i, q[i]));
                 }
                 Convention::Modified => {
                     m.carry(&(rot_x(joint.alpha) * trans(joint.a, 0.0, 0.0)));
-                    m.actuate(joint.kind, qd[i]);
+                    m.actuate(joint.kind, rate);
                     m.carry(&(rot_z(theta) * trans(0.0, 0.0, d)));
                 }
             }
@@ -682,9 +697,10 @@ pub fn manipulability(j: &DMatrix<f64>) -> f64 {
 
 /// The gradient of [`manipulability`] from the Jacobian `j` (M×N) and its Hessian `h`
 /// (`h[k] = ∂J/∂q_k`, same rows): `∂w/∂q_k = w · tr(J⁺ H_k)`, with nalgebra's SVD for `w`
-/// and the pseudo-inverse `J⁺`. Zero where `w` is (below `1e-300`: not differentiable).
+/// and the pseudo-inverse `J⁺`. Zero where `w` is (below `1e-300`: not differentiable;
+/// identically for a tall `j`).
 pub fn manipulability_gradient(j: &DMatrix<f64>, h: &[DMatrix<f64>]) -> Vec<f64> {
-    let w = manipulability(&tall_or_wide(j));
+    let w = manipulability(j);
     if w < 1e-300 {
         return vec![0.0; h.len()];
     }
@@ -695,19 +711,29 @@ pub fn manipulability_gradient(j: &DMatrix<f64>, h: &[DMatrix<f64>]) -> Vec<f64>
     h.iter().map(|hk| w * (&pinv * hk).trace()).collect()
 }
 
-/// `j` itself when it is wide; its transpose when it is tall (`√det(Jᵀ J)` is then the
-/// measure, [`manipulability`] of the transpose).
-fn tall_or_wide(j: &DMatrix<f64>) -> DMatrix<f64> {
-    if j.nrows() > j.ncols() {
-        j.transpose()
-    } else {
-        j.clone()
-    }
-}
-
 /// [`manipulability`] of a 6×N Jacobian.
 pub fn manipulability6(j: &Jacobian) -> f64 {
     manipulability(&DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]))
+}
+
+/// `count` deterministic configurations of `dof` joint values, uniform in [−π, π]
+/// (SplitMix64 from `seed`): the random inputs of the tests, the same on every run.
+pub fn configurations(seed: u64, count: usize, dof: usize) -> Vec<Vec<f64>> {
+    let mut state = seed;
+    let mut unit = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| {
+            (0..dof)
+                .map(|_| std::f64::consts::PI * (2.0 * unit() - 1.0))
+                .collect()
+        })
+        .collect()
 }
 
 /// [`NumericRobot::fk`] with default parameters.

@@ -2,6 +2,9 @@ use std::f64::consts::PI;
 
 use nalgebra::Rotation3;
 use proptest::prelude::*;
+#[path = "../../tests/common/fixed_seed.rs"]
+mod fixed_seed;
+use fixed_seed::fixed_seed;
 
 use super::*;
 use crate::model::raw::{RawJoint, RawRobot, RawValue};
@@ -406,7 +409,7 @@ fn check_agreement(robot: &Robot, q: &[f64]) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(fixed_seed(200))]
 
     #[test]
     fn three_jacobians_agree(
@@ -416,4 +419,11 @@ proptest! {
         let robot = &robots()[which];
         check_agreement(robot, &q[..robot.dof()])?;
     }
+}
+
+/// The case proptest once found (formerly `proptest-regressions/numeric/tests.txt`).
+#[test]
+fn former_regression_three_jacobians_at_zero() {
+    let robot = &robots()[3];
+    check_agreement(robot, &[0.0; 7][..robot.dof()]).unwrap();
 }

@@ -2,13 +2,16 @@
 //! their exact normal forms are (when both are within the term budget), else when their
 //! values agree at 16 fixed-seed points (relative 1e-9).
 
-use crate::algebra::graph::{Graph, Id};
+use std::cell::RefCell;
+
+use crate::algebra::graph::{EvalScratch, Graph, Id};
 use crate::algebra::poly::VarKind;
 use crate::kinematics::frames::SymbolicChain;
 
 /// The check: exact normal forms when both are known, else values at random points.
 pub struct Probe {
     points: Vec<Vec<f64>>,
+    scratch: RefCell<EvalScratch>,
 }
 
 impl Probe {
@@ -39,7 +42,10 @@ impl Probe {
                 vals
             })
             .collect();
-        Probe { points }
+        Probe {
+            points,
+            scratch: RefCell::default(),
+        }
     }
 
     /// `a` and `b` are equal: their normal forms, else their values at the points.
@@ -52,9 +58,10 @@ impl Probe {
 
     /// Values agree at every point (for rewrites whose normal forms are not recomputed).
     pub fn same_values(&self, g: &Graph, a: Id, b: Id) -> bool {
+        let scratch = &mut *self.scratch.borrow_mut();
         self.points.iter().all(|p| {
-            let x = g.eval(a, &|v| p[v as usize]);
-            let y = g.eval(b, &|v| p[v as usize]);
+            let x = g.eval_in(a, &|v| p[v as usize], scratch);
+            let y = g.eval_in(b, &|v| p[v as usize], scratch);
             (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()))
         })
     }

@@ -1,3 +1,4 @@
+#![allow(dead_code)]
 //! Shared by the tests that go over every robot table (also `#[path]`-included by
 //! kinegen-cli's determinism test).
 
@@ -8,8 +9,8 @@ pub fn robots_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots")
 }
 
-/// Every robot table in `robots/`, sorted.
-pub fn robot_files() -> Vec<PathBuf> {
+/// Every robot file in `robots/` (DH tables and files naming a URDF), sorted.
+pub fn all_robot_files() -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(robots_dir())
         .expect("robots/ exists")
         .map(|e| e.unwrap().path())
@@ -17,4 +18,15 @@ pub fn robot_files() -> Vec<PathBuf> {
         .collect();
     files.sort();
     files
+}
+
+/// Every DH table in `robots/` (the files that do not name a URDF), sorted.
+pub fn robot_files() -> Vec<PathBuf> {
+    all_robot_files()
+        .into_iter()
+        .filter(|p| {
+            let src = std::fs::read_to_string(p).unwrap();
+            !src.lines().any(|l| l.starts_with("urdf ="))
+        })
+        .collect()
 }

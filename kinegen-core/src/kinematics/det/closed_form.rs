@@ -22,6 +22,9 @@ pub struct DetModel {
     pub rows: Vec<usize>,
     /// `constant · Π factors`.
     pub factored: Factored,
+    /// Constant `√k` factors taken out of `factored` (ring variables; the determinant
+    /// is `constant · Π surds · Π factors`).
+    pub surds: Vec<crate::algebra::poly::Var>,
     /// Distinct nonconstant factors with multiplicity, their node, text and LaTeX.
     pub factors: Vec<DetFactor>,
     /// The whole determinant.
@@ -66,6 +69,7 @@ pub fn determinant(chain: &Chain, model: &mut Model) -> Result<DetModel, String>
             DetError::Deadline => late(),
             e => format!("closed-form determinant over budget ({e:?})"),
         })?;
+    let surds = take_surds(&mut factored, &model.sym.graph.ring);
     let size: usize = factored.factors.iter().map(|f| f.len()).sum();
     if size > MAX_FACTOR_TERMS {
         return Err(format!(
@@ -80,6 +84,10 @@ pub fn determinant(chain: &Chain, model: &mut Model) -> Result<DetModel, String>
     factors.sort_by_key(|f| (!f.joints.is_empty(), f.poly.len(), f.joints.clone()));
     let g = &mut model.sym.graph;
     let mut node = g.num(factored.constant.clone());
+    for &v in &surds {
+        let l = g.leaf(v);
+        node = g.mul(node, l);
+    }
     for f in &factors {
         for _ in 0..f.power {
             node = g.mul(node, f.node);
@@ -91,14 +99,25 @@ pub fn determinant(chain: &Chain, model: &mut Model) -> Result<DetModel, String>
     }
     // Check: the emitted product equals the determinant's normal form.
     if let (Some(nf), Ok(expanded)) = (g.nf(node), factored.expand(&g.ring, g.max_terms)) {
+        let expanded = surds
+            .iter()
+            .fold(expanded, |p, &v| g.ring.mul(&p, &Poly::var(v)));
         if *nf != expanded {
             return Err("internal check failed: simplified determinant differs".into());
         }
     }
-    let (text, latex) = det_text(&factored.constant, &factors);
+    let surd_text: Vec<u32> = surds
+        .iter()
+        .filter_map(|&v| match g.ring.kind(v) {
+            VarKind::Sqrt(k) => Some(*k),
+            _ => None,
+        })
+        .collect();
+    let (text, latex) = det_text(&factored.constant, &surd_text, &factors);
     Ok(DetModel {
         rows,
         factored,
+        surds,
         factors,
         node,
         text,
@@ -198,14 +217,52 @@ fn joints_of(model: &Model, poly: &Poly) -> Vec<usize> {
     joints
 }
 
-fn det_text(constant: &Rat, factors: &[DetFactor]) -> (String, String) {
+/// `√k` factors of the determinant (from twists of π/3, π/4, …) are constants, never
+/// zero: not singular factors. Pairs of equal ones become `k` in the constant; the rest
+/// (one per `k`) are taken out of `factored` and returned as their ring variables.
+fn take_surds(
+    factored: &mut Factored,
+    ring: &crate::algebra::poly::Ring,
+) -> Vec<crate::algebra::poly::Var> {
+    let mut surds: Vec<crate::algebra::poly::Var> = Vec::new();
+    let mut rest = Vec::new();
+    for f in factored.factors.drain(..) {
+        let var = f
+            .vars()
+            .first()
+            .copied()
+            .filter(|_| f.len() == 1 && f.degree() == 1);
+        let sqrt = var.filter(|&v| matches!(ring.kind(v), VarKind::Sqrt(_)));
+        match sqrt {
+            Some(v) if f == Poly::var(v) => match surds.iter().position(|&w| w == v) {
+                Some(i) => {
+                    surds.remove(i);
+                    if let VarKind::Sqrt(k) = ring.kind(v) {
+                        factored.constant *= Rat::from_integer((*k).into());
+                    }
+                }
+                None => surds.push(v),
+            },
+            _ => rest.push(f),
+        }
+    }
+    factored.factors = rest;
+    surds.sort_unstable();
+    surds
+}
+
+fn det_text(constant: &Rat, surds: &[u32], factors: &[DetFactor]) -> (String, String) {
     let mut text: Vec<String> = Vec::new();
     let mut latex: Vec<String> = Vec::new();
     let neg = constant.is_negative();
     let k = constant.abs();
-    if !k.is_one() || factors.is_empty() {
+    if !k.is_one() || (factors.is_empty() && surds.is_empty()) {
         text.push(fmt_rat(&k));
         latex.push(fmt_rat(&k));
+    }
+    for s in surds {
+        text.push(format!("sqrt({s})"));
+        latex.push(format!("\\sqrt{{{s}}}"));
     }
     for f in factors {
         let single = f.poly.len() == 1;

@@ -1,6 +1,6 @@
 //! The gradient of the closed-form determinant, by exact differentiation of its factors.
 //!
-//! `det J = C · Π_k f_k^(p_k)` with every factor a polynomial in `s_i`, `c_i`, prismatic
+//! `det J = C · Π_k f_k^(p_k)` (`C` rational times constant `√k`s) with every factor a polynomial in `s_i`, `c_i`, prismatic
 //! `q_i` and parameters ([`super::closed_form`]). Along `q_j`: `∂s_i/∂q_j = σ c_i`,
 //! `∂c_i/∂q_j = −σ s_i` for the angle `σ q_j + offset` of joint `j` (`σ = ±1`, a flipped
 //! joint has −1), `∂q_j/∂q_j = 1` for a prismatic joint, and everything else is constant
@@ -94,7 +94,13 @@ pub fn det_gradient(model: &mut Model, det: &DetModel, dof: usize) -> Result<Det
         .iter()
         .map(|f| power(g, f.node, f.power))
         .collect();
-    let mut prefix = vec![g.num(det.factored.constant.clone())];
+    // C · Π √k: the constant part.
+    let mut constant = g.num(det.factored.constant.clone());
+    for &v in &det.surds {
+        let l = g.leaf(v);
+        constant = g.mul(constant, l);
+    }
+    let mut prefix = vec![constant];
     for &x in &full {
         let last = *prefix.last().expect("nonempty");
         prefix.push(g.mul(last, x));
@@ -147,12 +153,20 @@ fn poly_node(model: &mut Model, p: &Poly) -> (Id, (String, String)) {
     }
 }
 
-/// Each gradient entry equals the derivative of the expanded determinant (normal forms;
-/// skipped for entries past the term budget, whose factors were checked one by one).
+/// Each gradient entry equals the derivative of the determinant's own normal form (the
+/// emitted `jacobian_det` node's, or else the expanded factored form's; skipped past the
+/// term budget, where the factors' gradients were formed one by one).
 fn check(model: &Model, det: &DetModel, gradient: &[Id]) -> Result<(), String> {
     let g = &model.sym.graph;
-    let Ok(expanded) = det.factored.expand(&g.ring, g.max_terms) else {
-        return Ok(());
+    let expanded = match g.nf(det.node) {
+        Some(nf) => nf.clone(),
+        None => match det.factored.expand(&g.ring, g.max_terms) {
+            Ok(p) => det
+                .surds
+                .iter()
+                .fold(p, |p, &v| g.ring.mul(&p, &Poly::var(v))),
+            Err(_) => return Ok(()),
+        },
     };
     for (j, &id) in gradient.iter().enumerate() {
         let want = g.ring.derivative(&expanded, &along_joint(model, j));

@@ -1,0 +1,478 @@
+//! `kinegen ik`: every closed-form solution of one pose or of a file of poses, the same
+//! solver the generated `ik` calls (through `kinegen::ik::dispatch`), fed the geometry
+//! the engine derives; residuals and singular factors evaluated on the engine's own
+//! `fk` and determinant nodes.
+
+use std::fmt::Write;
+
+use kinegen::ik::dispatch::{solve, Checks, DynBranch, DynGeometry, DynPlan, DynProblem};
+use kinegen_core::kinematics::ik::family::Family;
+use kinegen_core::kinematics::ik::IkModel;
+use kinegen_core::model::robot::JointKind;
+use kinegen_core::{Chain, Derived};
+use serde_json::{json, Value};
+
+use crate::error::CliError;
+
+/// The solutions of one pose.
+#[derive(Clone, Debug)]
+pub struct PoseResult {
+    /// Every solution.
+    pub branches: Vec<DynBranch>,
+    /// `max |fk(q) − pose|` of each (measured for every one here).
+    pub residuals: Vec<f64>,
+    /// Names of the vanishing singular factors of each (`sin(q5) = 0`).
+    pub singular: Vec<Vec<String>>,
+    /// The answer of `ik_near`, when a current configuration was given.
+    pub near: Option<Option<Vec<f64>>>,
+}
+
+/// What the CLI needs to solve poses of one robot.
+pub struct Solver<'a> {
+    chain: &'a Chain,
+    derived: &'a Derived,
+    ik: &'a IkModel,
+    plan: DynPlan,
+    geometry: DynGeometry,
+    revolute: Vec<bool>,
+    limits: Vec<[f64; 2]>,
+}
+
+impl<'a> Solver<'a> {
+    /// The solver of `chain`, or why it has none (exit 2).
+    pub fn new(chain: &'a Chain, derived: &'a Derived) -> Result<Self, CliError> {
+        let ik = match &derived.ik {
+            Some(Ok(ik)) => ik,
+            Some(Err(why)) => {
+                return Err(CliError::Usage(format!(
+                    "`{}` has no closed-form inverse kinematics: {why}",
+                    chain.name
+                )))
+            }
+            None => {
+                return Err(CliError::Usage(format!(
+                    "`{}` is an f32 robot: closed-form IK is generated for f64 robots",
+                    chain.name
+                )))
+            }
+        };
+        let v = ik.values(chain);
+        let (revolute_joints, prismatic) = match &ik.plan.family {
+            Family::Planar {
+                revolute,
+                prismatic,
+            } => (revolute.clone(), *prismatic),
+            _ => (Vec::new(), None),
+        };
+        Ok(Solver {
+            chain,
+            derived,
+            ik,
+            plan: DynPlan {
+                solver: ik.plan.family.solver().into(),
+                revolute: revolute_joints,
+                prismatic,
+                locked: ik.plan.locked,
+            },
+            geometry: DynGeometry {
+                h: v.h,
+                p: v.p,
+                prismatic: v.prismatic,
+                r_tool: v.r_tool,
+                p_tool: v.p_tool,
+            },
+            revolute: chain.kinds().map(|k| k == JointKind::Revolute).collect(),
+            limits: chain
+                .links
+                .iter()
+                .map(|l| l.limits.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]))
+                .collect(),
+        })
+    }
+
+    /// `IK_FAMILY`.
+    pub fn family(&self) -> &str {
+        &self.ik.plan.name
+    }
+
+    /// The derivation steps.
+    pub fn steps(&self) -> &[String] {
+        &self.ik.plan.steps
+    }
+
+    /// The tool pose the engine's `fk` gives at `q`.
+    fn fk(&self, q: &[f64]) -> [[f64; 4]; 4] {
+        let m = &self.derived.model;
+        let ids: Vec<_> = m.fk_rows.iter().flatten().copied().collect();
+        let v = m.eval(self.chain, q, &ids);
+        let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+        for (i, row) in t.iter_mut().take(3).enumerate() {
+            row.copy_from_slice(&v[4 * i..4 * i + 4]);
+        }
+        t
+    }
+
+    /// The singular factors' names that vanish at `q`.
+    fn vanishing(&self, q: &[f64]) -> (u32, Vec<String>) {
+        let Some(Ok(det)) = &self.derived.det else {
+            return (0, Vec::new());
+        };
+        let ids: Vec<_> = det.factors.iter().map(|f| f.node).collect();
+        let values = self.derived.model.eval(self.chain, q, &ids);
+        let mut bits = 0;
+        let mut names = Vec::new();
+        for (i, (f, v)) in det.factors.iter().zip(values).enumerate() {
+            if v.abs() <= kinegen::ik::solutions::SINGULAR_TOLERANCE {
+                bits |= 1 << i.min(31);
+                names.push(format!("{} = 0", f.text));
+            }
+        }
+        (bits, names)
+    }
+
+    /// The task rows a planar arm solves (`None`: the whole pose).
+    fn task_rows(&self) -> Option<Vec<usize>> {
+        match self.ik.plan.family {
+            Family::Planar { .. } => self
+                .chain
+                .task
+                .as_ref()
+                .map(|t| t.iter().map(|r| r.index()).collect()),
+            _ => None,
+        }
+    }
+
+    fn residual(&self, q: &[f64], pose: &[[f64; 4]; 4]) -> f64 {
+        let t = self.fk(q);
+        let p = kinegen::ik::geometry::Pose::from_matrix(pose);
+        match self.task_rows() {
+            None => kinegen::ik::solutions::residual(&t, &p),
+            Some(rows) => kinegen::ik::solutions::task_residual(&t, &p, &rows),
+        }
+    }
+
+    /// Every solution of `pose`; with `near`, also the nearest to it (its free joints
+    /// from it). `locked` is the locked joint's value of a 7-joint arm.
+    pub fn solve(
+        &self,
+        pose: [[f64; 4]; 4],
+        near: Option<&[f64]>,
+        locked: Option<f64>,
+    ) -> Result<PoseResult, CliError> {
+        let n = self.chain.dof();
+        let q_locked = match (self.plan.locked, locked, near) {
+            (None, _, _) => 0.0,
+            (Some(_), Some(x), _) => x,
+            (Some(k), None, Some(q)) => q[k],
+            (Some(k), None, None) => {
+                return Err(CliError::Usage(format!(
+                "`{}` locks joint {} for its closed form: give its value with --locked, or --near",
+                self.chain.name,
+                k + 1
+            )))
+            }
+        };
+        let zeros = vec![0.0; n];
+        let free = near.unwrap_or(&zeros);
+        let residual = |q: &[f64]| self.residual(q, &pose);
+        let singular = |q: &[f64]| self.vanishing(q).0;
+        let checks = Checks {
+            residual: &residual,
+            singular: &singular,
+        };
+        let problem = DynProblem {
+            plan: &self.plan,
+            geometry: &self.geometry,
+            pose,
+            q_locked,
+            free,
+            revolute: &self.revolute,
+            limits: &self.limits,
+        };
+        let branches = solve(&problem, &checks).map_err(|e| CliError::Usage(e.into()))?;
+        let residuals = branches
+            .iter()
+            .map(|b| self.residual(&b.q, &pose))
+            .collect();
+        let singular = branches.iter().map(|b| self.vanishing(&b.q).1).collect();
+        let near = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
+        Ok(PoseResult {
+            branches,
+            residuals,
+            singular,
+            near,
+        })
+    }
+}
+
+/// The exact branch nearest to `q` (whole turns of revolute joints chosen nearest to it
+/// within the limits), as `ik_near` picks it.
+fn nearest(
+    branches: &[DynBranch],
+    q: &[f64],
+    revolute: &[bool],
+    limits: &[[f64; 2]],
+) -> Option<Vec<f64>> {
+    use std::f64::consts::TAU;
+    let mut best: Option<(Vec<f64>, f64)> = None;
+    for b in branches.iter().filter(|b| b.exact) {
+        let mut x = b.q.clone();
+        let mut d2 = 0.0;
+        for i in 0..x.len() {
+            if revolute[i] {
+                let k = ((q[i] - x[i]) / TAU).round();
+                let candidates = [k - 1.0, k, k + 1.0].map(|m| x[i] + m * TAU);
+                let inside = |y: &f64| *y >= limits[i][0] && *y <= limits[i][1];
+                x[i] = candidates
+                    .into_iter()
+                    .min_by(|a, b| {
+                        let cost = |y: f64| (y - q[i]).abs() + if inside(&y) { 0.0 } else { 1e3 };
+                        cost(*a).total_cmp(&cost(*b))
+                    })
+                    .unwrap_or(x[i]);
+            }
+            d2 += (x[i] - q[i]) * (x[i] - q[i]);
+        }
+        if best.as_ref().is_none_or(|(_, d)| d2 < *d) {
+            best = Some((x, d2));
+        }
+    }
+    best.map(|(x, _)| x)
+}
+
+/// Parse `--pose m00,m01,…,m33`: 16 finite numbers, row-major, a rigid transform.
+pub fn parse_pose(text: &str) -> Result<[[f64; 4]; 4], CliError> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| {
+            CliError::Usage(format!(
+                "--pose: `{text}` is not 16 comma-separated numbers"
+            ))
+        })?;
+    pose_from(&values, "--pose")
+}
+
+/// A 4×4 row-major transform from 16 numbers, checked: finite, last row `0 0 0 1`,
+/// rotation orthonormal (to 1e-6).
+pub fn pose_from(values: &[f64], what: &str) -> Result<[[f64; 4]; 4], CliError> {
+    if values.len() != 16 {
+        return Err(CliError::Usage(format!(
+            "{what}: a pose is 16 numbers (row-major 4×4), found {}",
+            values.len()
+        )));
+    }
+    if values.iter().any(|x| !x.is_finite()) {
+        return Err(CliError::Usage(format!(
+            "{what}: the pose has a non-finite entry"
+        )));
+    }
+    let t: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| values[4 * i + j]));
+    if t[3] != [0.0, 0.0, 0.0, 1.0] {
+        return Err(CliError::Usage(format!(
+            "{what}: the last row of a pose must be 0, 0, 0, 1"
+        )));
+    }
+    let r = nalgebra::Matrix3::from_fn(|i, j| t[i][j]);
+    let off = (r.transpose() * r - nalgebra::Matrix3::identity()).amax();
+    if off > 1e-6 || r.determinant() < 0.0 {
+        return Err(CliError::Usage(format!(
+            "{what}: the rotation part is not a rotation (RᵀR − I is {off:.1e} off, det {:.3})",
+            r.determinant()
+        )));
+    }
+    Ok(t)
+}
+
+/// Parse `--near q1,…,qN`.
+pub fn parse_near(text: &str, dof: usize) -> Result<Vec<f64>, CliError> {
+    crate::eval::parse_q(text, dof).map_err(|e| match e {
+        CliError::Usage(m) => CliError::Usage(m.replacen("--q", "--near", 1)),
+        e => e,
+    })
+}
+
+/// `{"family", "solutions", "exact", "singular", "residual", "within_limits"[, "near"]}`.
+pub fn to_json(family: &str, r: &PoseResult) -> Value {
+    let mut v = json!({
+        "family": family,
+        "solutions": r.branches.iter().map(|b| b.q.clone()).collect::<Vec<_>>(),
+        "exact": r.branches.iter().map(|b| b.exact).collect::<Vec<_>>(),
+        "singular": r.singular,
+        "residual": r.residuals,
+        "within_limits": r.branches.iter().map(|b| b.within_limits).collect::<Vec<_>>(),
+    });
+    if let Some(near) = &r.near {
+        v["near"] = json!(near);
+    }
+    v
+}
+
+/// A readable table of one pose's solutions.
+pub fn to_table(family: &str, r: &PoseResult) -> String {
+    let mut s = format!("family: {family}\n{} solutions\n", r.branches.len());
+    for (i, b) in r.branches.iter().enumerate() {
+        let q: Vec<String> = b.q.iter().map(|x| format!("{x:>10.6}")).collect();
+        let mut flags = vec![if b.exact { "exact" } else { "nearest" }.to_string()];
+        if !b.within_limits {
+            flags.push("outside limits".into());
+        }
+        if !r.singular[i].is_empty() {
+            flags.push(format!("singular: {}", r.singular[i].join(", ")));
+        } else if b.at_singularity {
+            flags.push("singular".into());
+        }
+        let _ = writeln!(
+            s,
+            "  {:>2}  q = [{}]  residual {:.1e}  ({})",
+            i + 1,
+            q.join(", "),
+            r.residuals[i],
+            flags.join("; ")
+        );
+    }
+    if let Some(near) = &r.near {
+        match near {
+            Some(q) => {
+                let q: Vec<String> = q.iter().map(|x| format!("{x:.6}")).collect();
+                let _ = writeln!(s, "nearest to the given configuration: [{}]", q.join(", "));
+            }
+            None => {
+                s.push_str("nearest to the given configuration: none (the pose is out of reach)\n")
+            }
+        }
+    }
+    s
+}
+
+/// What `kinegen ik` was asked.
+pub struct Request<'a> {
+    /// `--pose`.
+    pub pose: Option<&'a str>,
+    /// `--poses`.
+    pub poses: Option<&'a std::path::Path>,
+    /// `--near`.
+    pub near: Option<&'a str>,
+    /// `--locked`.
+    pub locked: Option<f64>,
+    /// `--json`.
+    pub json: bool,
+}
+
+/// `kinegen ik`: the text to print.
+pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, CliError> {
+    let solver = Solver::new(chain, derived)?;
+    let n = chain.dof();
+    match (req.pose, req.poses) {
+        (Some(text), None) => {
+            let pose = parse_pose(text)?;
+            let near = req.near.map(|t| parse_near(t, n)).transpose()?;
+            let r = solver.solve(pose, near.as_deref(), req.locked)?;
+            Ok(if req.json {
+                format!("{}\n", to_json(solver.family(), &r))
+            } else {
+                to_table(solver.family(), &r)
+            })
+        }
+        (None, Some(path)) => {
+            let poses = read_json(path, "--poses")?;
+            let poses = poses
+                .as_array()
+                .ok_or_else(|| {
+                    CliError::Usage(format!(
+                        "{}: expected a JSON array of poses",
+                        path.display()
+                    ))
+                })?
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    pose_from(&numbers(p, 4, 4), &format!("{}: pose {i}", path.display()))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let near: Option<Vec<Vec<f64>>> = match req.near {
+                None => None,
+                Some(file) => {
+                    let v = read_json(std::path::Path::new(file), "--near")?;
+                    let rows = v
+                        .as_array()
+                        .map(|a| a.iter().map(|q| numbers(q, 1, n)).collect::<Vec<_>>());
+                    match rows {
+                        Some(rows) if rows.len() == poses.len() && rows.iter().all(|r| r.len() == n && r.iter().all(|x| x.is_finite())) => Some(rows),
+                        _ => {
+                            return Err(CliError::Usage(format!(
+                                "{file}: expected a JSON array of {} joint vectors of {n} numbers, one per pose",
+                                poses.len()
+                            )))
+                        }
+                    }
+                }
+            };
+            let mut out = Vec::new();
+            let mut text = String::new();
+            for (i, pose) in poses.iter().enumerate() {
+                let q = near.as_ref().map(|rows| rows[i].as_slice());
+                let r = solver.solve(*pose, q, req.locked)?;
+                out.push(to_json(solver.family(), &r));
+                let _ = writeln!(text, "pose {i}: {}", to_table(solver.family(), &r));
+            }
+            Ok(if req.json {
+                format!("{}\n", Value::Array(out))
+            } else {
+                text
+            })
+        }
+        _ => Err(CliError::Usage(
+            "give one of --pose m00,…,m33 or --poses FILE.json".into(),
+        )),
+    }
+}
+
+fn read_json(path: &std::path::Path, what: &str) -> Result<Value, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::Usage(format!("{what}: cannot read {}: {e}", path.display())))?;
+    serde_json::from_str(&text)
+        .map_err(|e| CliError::Usage(format!("{}:{}: not JSON: {e}", path.display(), e.line())))
+}
+
+/// The numbers of a JSON `rows × cols` array (`[[…], …]`, or `[…]` for one row), flat;
+/// empty when it is not one.
+fn numbers(v: &Value, rows: usize, cols: usize) -> Vec<f64> {
+    let row = |r: &Value| -> Option<Vec<f64>> {
+        let a = r.as_array()?;
+        (a.len() == cols).then(|| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect())
+    };
+    if rows == 1 {
+        return row(v).unwrap_or_default();
+    }
+    match v.as_array() {
+        Some(a) if a.len() == rows => a
+            .iter()
+            .map(row)
+            .collect::<Option<Vec<_>>>()
+            .map(|r| r.concat())
+            .unwrap_or_default(),
+        _ => Vec::new(),
+    }
+}
+
+/// `kinegen show ROBOT --what ik`.
+pub fn show(chain: &Chain, derived: &Derived) -> String {
+    match &derived.ik {
+        Some(Ok(ik)) => {
+            let mut s = format!("{} — closed-form IK: {}\n\n", chain.name, ik.plan.name);
+            for (i, step) in ik.plan.steps.iter().enumerate() {
+                let _ = writeln!(s, "{}. {step}", i + 1);
+            }
+            let _ = writeln!(
+                s,
+                "\nat most {} solutions per pose; the family was decided exactly from the joint axes at q = 0",
+                ik.plan.max_solutions
+            );
+            s
+        }
+        Some(Err(why)) => format!("{} — no closed-form IK: {why}\n", chain.name),
+        None => format!("{} — no closed-form IK: f32 robots get none\n", chain.name),
+    }
+}

@@ -1,0 +1,295 @@
+//! `kinegen ik` as a user calls it: poses made by the independent numeric reference's
+//! forward kinematics, solved by the binary, every solution checked against that
+//! reference again (not against the engine that produced it).
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+use assert_cmd::Command;
+use kinegen_core::front::toml_file;
+use kinegen_core::model::robot::JointKind;
+use kinegen_core::numeric::NumericRobot;
+use serde_json::Value;
+
+fn kinegen() -> Command {
+    Command::cargo_bin("kinegen").unwrap()
+}
+
+fn robot_file(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../robots")
+        .join(format!("{name}.toml"))
+}
+
+fn stdout(args: &[&str]) -> String {
+    let out = kinegen()
+        .args(args)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    String::from_utf8(out).unwrap()
+}
+
+/// Exit 2, one `kinegen: error:` line, no panic; the line is returned.
+fn fails(args: &[&str]) -> String {
+    let out = kinegen()
+        .args(args)
+        .assert()
+        .code(2)
+        .stdout("")
+        .get_output()
+        .stderr
+        .clone();
+    let err = String::from_utf8(out).unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("kinegen: error: "), "{err}");
+    err
+}
+
+/// A fixed-seed generator (SplitMix64): the same configurations on every run.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn tmp(name: &str, value: &Value) -> PathBuf {
+    let path = std::env::temp_dir().join(format!("kinegen-ik-{}-{name}.json", std::process::id()));
+    std::fs::write(&path, value.to_string()).unwrap();
+    path
+}
+
+fn pose_json(t: &nalgebra::Matrix4<f64>) -> Value {
+    Value::from(
+        (0..4)
+            .map(|r| (0..4).map(|c| t[(r, c)]).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
+    )
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// `max |T_a − T_b|` over the top three rows (rotation and metres alike: the robots'
+/// lengths are O(1 m)).
+fn distance(a: &nalgebra::Matrix4<f64>, b: &nalgebra::Matrix4<f64>) -> f64 {
+    (a - b).fixed_view::<3, 4>(0, 0).amax()
+}
+
+/// 40 seeded configurations of each 6-joint robot with a closed form: every listed exact
+/// solution reaches the pose (checked by the numeric reference), the configuration that
+/// made the pose is among them (modulo 2π), and `near` returns it.
+#[test]
+fn every_solution_reaches_the_pose_and_the_source_is_among_them() {
+    for (name, locked) in [
+        ("ur5", None),
+        ("ur10e", None),
+        ("puma560", None),
+        ("stanford", None),
+        ("kuka_kr6_r900", None),
+        ("abb_irb120", None),
+        ("kuka_iiwa14", Some(2)),
+    ] {
+        let (robot, _) = toml_file::load_file(&robot_file(name)).unwrap();
+        let reference = NumericRobot::new(&robot).unwrap();
+        let n = robot.dof();
+        let mut rng = Rng(0x1234_5678 ^ n as u64);
+        let mut qs = Vec::new();
+        let mut poses = Vec::new();
+        for _ in 0..40 {
+            let q: Vec<f64> = robot
+                .joints
+                .iter()
+                .map(|j| match (j.kind, j.limits) {
+                    (JointKind::Prismatic, Some([lo, hi])) => lo + (hi - lo) * rng.next(),
+                    (JointKind::Prismatic, None) => 0.1 + 0.5 * rng.next(),
+                    (JointKind::Revolute, limits) => {
+                        // Inside the limits: `near` prefers solutions within them.
+                        let [lo, hi] = limits.unwrap_or([-PI, PI]);
+                        let (lo, hi) = (lo.max(-PI), hi.min(PI));
+                        lo + (hi - lo) * rng.next()
+                    }
+                })
+                .collect();
+            poses.push(pose_json(&reference.fk(&q).unwrap()));
+            qs.push(Value::from(q));
+        }
+        let poses_file = tmp(&format!("{name}-poses"), &Value::from(poses.clone()));
+        let near_file = tmp(&format!("{name}-near"), &Value::from(qs.clone()));
+        let mut args = vec!["ik", name, "--json", "--poses"];
+        let poses_arg = poses_file.to_string_lossy().into_owned();
+        let near_arg = near_file.to_string_lossy().into_owned();
+        args.push(&poses_arg);
+        args.extend(["--near", &near_arg]);
+        let out: Value = serde_json::from_str(&stdout(&args)).unwrap();
+        let _ = std::fs::remove_file(&poses_file);
+        let _ = std::fs::remove_file(&near_file);
+        let results = out.as_array().unwrap();
+        assert_eq!(results.len(), 40, "{name}");
+        for (i, r) in results.iter().enumerate() {
+            let q0 = floats(&qs[i]);
+            let t0 = reference.fk(&q0).unwrap();
+            let solutions: Vec<Vec<f64>> = r["solutions"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(floats)
+                .collect();
+            let exact: Vec<bool> = r["exact"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|b| b.as_bool().unwrap())
+                .collect();
+            assert!(!solutions.is_empty(), "{name} pose {i}: no solution");
+            let mut found = false;
+            for (q, &ex) in solutions.iter().zip(&exact) {
+                let mut q = q.clone();
+                if let Some(k) = locked {
+                    assert!(
+                        (q[k] - q0[k]).abs() < 1e-12,
+                        "{name}: the locked joint moved"
+                    );
+                    q[k] = q0[k];
+                }
+                let d = distance(&reference.fk(&q).unwrap(), &t0);
+                if ex {
+                    assert!(
+                        d < 1e-9,
+                        "{name} pose {i}: exact solution {q:?} misses by {d:e}"
+                    );
+                }
+                let same = q.iter().zip(&q0).zip(&robot.joints).all(|((a, b), j)| {
+                    let e = a - b;
+                    let e = match j.kind {
+                        JointKind::Revolute => {
+                            e - std::f64::consts::TAU * (e / std::f64::consts::TAU).round()
+                        }
+                        JointKind::Prismatic => e,
+                    };
+                    e.abs() < 1e-6
+                });
+                found |= same;
+            }
+            assert!(found, "{name} pose {i}: {q0:?} is not among {solutions:?}");
+            let near = floats(&r["near"]);
+            let d: f64 = near
+                .iter()
+                .zip(&q0)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(d < 1e-6, "{name} pose {i}: near {near:?} is not {q0:?}");
+            assert!(!r["family"].as_str().unwrap().is_empty());
+        }
+    }
+}
+
+/// A pose out of reach: the answers are finite, flagged as not exact, with the residual
+/// the reference measures; `near` says there is no exact solution.
+#[test]
+fn unreachable_pose_gives_flagged_nearest_solutions() {
+    let (robot, _) = toml_file::load_file(&robot_file("puma560")).unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    let pose = "1,0,0,2,0,1,0,0,0,0,1,0,0,0,0,1";
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "puma560",
+        "--pose",
+        pose,
+        "--json",
+        "--near",
+        "0,0,0,0,0,0",
+    ]))
+    .unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    assert!(!solutions.is_empty());
+    let target = nalgebra::Matrix4::new(
+        1.0, 0.0, 0.0, 2.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+    );
+    for (k, q) in solutions.iter().enumerate() {
+        let q = floats(q);
+        assert!(q.iter().all(|x| x.is_finite()));
+        assert_eq!(out["exact"][k], Value::Bool(false));
+        let measured = distance(&reference.fk(&q).unwrap(), &target);
+        let reported = out["residual"][k].as_f64().unwrap();
+        assert!(measured > 0.5, "an unreachable pose reached: {measured}");
+        assert!(
+            (measured - reported).abs() < 1e-9,
+            "{measured} vs {reported}"
+        );
+    }
+    assert_eq!(out["near"], Value::Null);
+}
+
+/// The planar arms solve their task rows [x, y, θ] or [x, y].
+#[test]
+fn planar_arm_solves_its_task_rows() {
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "planar_rr",
+        "--pose",
+        "1,0,0,0.5,0,1,0,0.3,0,0,1,0,0,0,0,1",
+        "--json",
+    ]))
+    .unwrap();
+    let (robot, _) = toml_file::load_file(&robot_file("planar_rr")).unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 2);
+    for q in solutions {
+        let t = reference.fk(&floats(q)).unwrap();
+        assert!((t[(0, 3)] - 0.5).abs() < 1e-12 && (t[(1, 3)] - 0.3).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn show_what_ik_lists_the_derivation() {
+    insta::assert_snapshot!("show_ik_ur5", stdout(&["show", "ur5", "--what", "ik"]));
+    let text = stdout(&["show", "panda", "--what", "ik"]);
+    assert!(text.contains("no closed-form IK"), "{text}");
+}
+
+#[test]
+fn bad_requests_exit_2_with_a_reason() {
+    let rigid = "1,0,0,0.3,0,1,0,0,0,0,1,0.4,0,0,0,1";
+    let e = fails(&["ik", "ur5", "--pose", "1,2,3"]);
+    assert!(e.contains("16 numbers"), "{e}");
+    let e = fails(&["ik", "ur5", "--pose", "1,0,0,0,0,1,0,0,0,0,1,NaN,0,0,0,1"]);
+    assert!(e.contains("non-finite"), "{e}");
+    let e = fails(&["ik", "ur5", "--pose", "2,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1"]);
+    assert!(e.contains("not a rotation"), "{e}");
+    let e = fails(&["ik", "ur5", "--pose", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1"]);
+    assert!(e.contains("last row"), "{e}");
+    let e = fails(&["ik", "panda", "--pose", rigid]);
+    assert!(e.contains("no closed-form inverse kinematics"), "{e}");
+    let e = fails(&["ik", "kuka_iiwa14", "--pose", rigid]);
+    assert!(e.contains("--locked"), "{e}");
+    let e = fails(&["ik", "ur5", "--pose", rigid, "--near", "0,0"]);
+    assert!(e.contains("--near"), "{e}");
+    let e = fails(&["ik", "ur5"]);
+    assert!(e.contains("--pose"), "{e}");
+    let bad = std::env::temp_dir().join(format!("kinegen-ik-{}-bad.json", std::process::id()));
+    std::fs::write(&bad, "[\n[[1,0,0,0],\n").unwrap();
+    let e = fails(&["ik", "ur5", "--poses", &bad.to_string_lossy()]);
+    assert!(
+        e.contains(":3:") || e.contains(":2:"),
+        "the file's line: {e}"
+    );
+    std::fs::write(&bad, "[[1,0,0,0]]").unwrap();
+    let e = fails(&["ik", "ur5", "--poses", &bad.to_string_lossy()]);
+    assert!(e.contains("pose 0"), "{e}");
+    let _ = std::fs::remove_file(&bad);
+}

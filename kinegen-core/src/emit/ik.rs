@@ -1,0 +1,272 @@
+//! The closed-form IK methods of a generated type: `ik` (or `ik_with` for a 7-joint arm),
+//! `ik_near`, `ik_seeded`, `ik_geometry`, the constants `IK_FAMILY`, `IK_STEPS` and
+//! `REVOLUTE`, and what the runtime's `finish` step needs (`Check`).
+
+use crate::chain::Chain;
+use crate::emit::code::Coder;
+use crate::emit::functions::{Const, Item, Method, MethodBody};
+use crate::kinematics::ik::family::Family;
+use crate::kinematics::ik::IkModel;
+use crate::model::robot::{JointKind, TaskRow};
+
+/// The `impl ::kinegen::ik::solutions::Check<N>` the generated type gets.
+#[derive(Clone, Debug)]
+pub struct CheckImpl {
+    /// Task rows the residual compares (`None`: the whole pose).
+    pub task_rows: Option<Vec<usize>>,
+    /// Whether the type has `singular_factors` (a closed-form determinant).
+    pub factors: bool,
+    /// The joint a 7-joint arm's closed form locks.
+    pub locked: Option<usize>,
+}
+
+/// The IK items and the `Check` impl for `chain`.
+pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, CheckImpl) {
+    let n = chain.dof();
+    let plan = &model.plan;
+    let k = plan.max_solutions;
+    let ty = format!("::kinegen::ik::IkSolutions<{n}, {k}>");
+    let pose = "pose: &[[f64; 4]; 4]";
+    let mut items = Vec::new();
+    let steps: Vec<String> = plan
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| format!("{}. {s}", i + 1))
+        .collect();
+    let derivation = format!(
+        "Family: **{}** — decided exactly from the joint axes at `q = 0`.\n\n```text\n{}\n```\n\n\
+         Each solution is flagged exact or least squares (unreachable pose: the nearest, with its \
+         residual), singular (which entries of `SINGULARITIES` vanish), and within `LIMITS`; \
+         revolute joints are wrapped by whole turns into the limits where that helps. No \
+         allocation, no panic: a non-finite pose gives no solutions.",
+        plan.name,
+        steps.join("\n")
+    );
+    let custom =
+        |args: String, lets: Vec<String>, result: String| MethodBody::Custom { args, lets, result };
+    match plan.locked {
+        None => {
+            items.push(Item::Method(Method {
+                doc: format!("Inverse kinematics in closed form: every solution of `pose` (at most {k}).\n\n{derivation}"),
+                name: "ik",
+                rates: false,
+                ret: ty.clone(),
+                body: custom(pose.into(), vec![], format!("self.ik_seeded(pose, &[0.0; {n}])")),
+            }));
+            items.push(Item::Method(Method {
+                doc: "The exact solution of `pose` nearest to `q_current` (whole turns chosen nearest \
+                      to it): the rule for a Cartesian motion. At a singular pose the joints the pose \
+                      leaves free keep their values from `q_current`, so the answer is continuous. \
+                      `None` when `pose` is out of reach."
+                    .into(),
+                name: "ik_near",
+                rates: false,
+                ret: format!("::core::option::Option<[f64; {n}]>"),
+                body: custom(
+                    format!("{pose}, q_current: &[f64; {n}]"),
+                    vec![],
+                    "self.ik_seeded(pose, q_current).nearest(q_current, &Self::REVOLUTE, &Self::LIMITS)".into(),
+                ),
+            }));
+            items.push(Item::Method(seeded(chain, model, &ty, None)));
+        }
+        Some(locked) => {
+            items.push(Item::Method(Method {
+                doc: format!(
+                    "Inverse kinematics in closed form with joint {} locked at `q_locked` (the \
+                     redundancy parameter): every solution of `pose` (at most {k}).\n\n{derivation}",
+                    locked + 1
+                ),
+                name: "ik_with",
+                rates: false,
+                ret: ty.clone(),
+                body: custom(
+                    format!("{pose}, q_locked: f64"),
+                    vec![],
+                    format!("self.ik_seeded(pose, q_locked, &[0.0; {n}])"),
+                ),
+            }));
+            items.push(Item::Method(Method {
+                doc: format!(
+                    "The exact solution of `pose` nearest to `q_current`, with joint {} kept at its \
+                     current value (see [`Self::ik_with`]); `None` when `pose` is out of reach.",
+                    locked + 1
+                ),
+                name: "ik_near",
+                rates: false,
+                ret: format!("::core::option::Option<[f64; {n}]>"),
+                body: custom(
+                    format!("{pose}, q_current: &[f64; {n}]"),
+                    vec![],
+                    format!(
+                        "self.ik_seeded(pose, q_current[{locked}], q_current).nearest(q_current, &Self::REVOLUTE, &Self::LIMITS)"
+                    ),
+                ),
+            }));
+            items.push(Item::Method(seeded(chain, model, &ty, Some(locked))));
+        }
+    }
+    items.push(Item::Method(geometry(chain, model)));
+    let revolute: Vec<&str> = chain
+        .kinds()
+        .map(|k| {
+            if k == JointKind::Revolute {
+                "true"
+            } else {
+                "false"
+            }
+        })
+        .collect();
+    items.push(Item::Const(Const {
+        doc: "Which joints are revolute (their values wrap by whole turns).".into(),
+        name: "REVOLUTE",
+        ty: format!("[bool; {n}]"),
+        value: format!("[{}]", revolute.join(", ")),
+    }));
+    items.push(Item::Const(Const {
+        doc: "The closed-form IK family, decided exactly at expansion time.".into(),
+        name: "IK_FAMILY",
+        ty: "&'static str".into(),
+        value: format!("{:?}", plan.name),
+    }));
+    let steps: Vec<String> = plan.steps.iter().map(|s| format!("{s:?}")).collect();
+    items.push(Item::Const(Const {
+        doc: "The IK derivation: which subproblem gives which joint, in order.".into(),
+        name: "IK_STEPS",
+        ty: "&'static [&'static str]".into(),
+        value: format!("&[{}]", steps.join(", ")),
+    }));
+    let task_rows = match &plan.family {
+        Family::Planar { .. } => chain
+            .task
+            .as_ref()
+            .map(|t| t.iter().map(|r| TaskRow::index(*r)).collect()),
+        _ => None,
+    };
+    (
+        items,
+        CheckImpl {
+            task_rows,
+            factors,
+            locked: plan.locked,
+        },
+    )
+}
+
+/// `ik_seeded`: the solver call, then `finish`.
+fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Method {
+    let n = chain.dof();
+    let family = &model.plan.family;
+    let solver = format!("::kinegen::ik::families::{}", family.solver());
+    let mut lets = vec![
+        "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);".to_string(),
+        "if !target.is_finite() || free.iter().any(|x| !x.is_finite()) { return ::kinegen::ik::IkSolutions::empty(); }".into(),
+        "let g = self.ik_geometry();".into(),
+    ];
+    let call = |g: &str, free: &str| match family {
+        Family::Planar {
+            revolute,
+            prismatic,
+        } => format!("{solver}(&{g}, &target, &{revolute:?}, {prismatic:?}, {free})"),
+        _ => format!("{solver}(&{g}, &target, {free})"),
+    };
+    let (args, doc) = match locked {
+        None => {
+            lets.push(format!("let candidates = {};", call("g", "free")));
+            (
+                format!("pose: &[[f64; 4]; 4], free: &[f64; {n}]"),
+                "Every solution of `pose`, with `free` giving the joints a singular pose leaves \
+                 undetermined (see [`Self::ik`], [`Self::ik_near`])."
+                    .to_string(),
+            )
+        }
+        Some(k) => {
+            lets.push(
+                "if !q_locked.is_finite() { return ::kinegen::ik::IkSolutions::empty(); }".into(),
+            );
+            lets.push(format!(
+                "let g6: ::kinegen::ik::geometry::Geometry<{}> = g.lock({k}, q_locked);",
+                n - 1
+            ));
+            lets.push(format!(
+                "let free6: [f64; {}] = ::kinegen::ik::solutions::without(free, {k});",
+                n - 1
+            ));
+            lets.push(format!("let c6 = {};", call("g6", "&free6")));
+            lets.push(format!(
+                "let candidates = ::kinegen::ik::solutions::with_locked::<{}, {n}, {}>(&c6, {k}, q_locked);",
+                n - 1,
+                model.plan.max_solutions
+            ));
+            (
+                format!("pose: &[[f64; 4]; 4], q_locked: f64, free: &[f64; {n}]"),
+                format!(
+                    "Every solution of `pose` with joint {} at `q_locked`, `free` giving the joints a \
+                     singular pose leaves undetermined.",
+                    k + 1
+                ),
+            )
+        }
+    };
+    Method {
+        doc,
+        name: "ik_seeded",
+                rates: false,
+        ret: ty.into(),
+        body: MethodBody::Custom {
+            args,
+            lets,
+            result: "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &Self::LIMITS, self)".into(),
+        },
+    }
+}
+
+/// `ik_geometry`: the axes, points and tool at `q = 0`, from the parameters.
+fn geometry(chain: &Chain, model: &IkModel) -> Method {
+    let n = chain.dof();
+    let coder = Coder::new(chain, &model.zero);
+    let body = coder.body(&model.ids);
+    let o = &body.outputs;
+    let v3 = |x: &[String]| {
+        format!(
+            "::kinegen::ik::geometry::V3::new({}, {}, {})",
+            x[0], x[1], x[2]
+        )
+    };
+    let h: Vec<String> = (0..n).map(|i| v3(&o[6 * i..6 * i + 3])).collect();
+    let p: Vec<String> = (0..n).map(|i| v3(&o[6 * i + 3..6 * i + 6])).collect();
+    let r = &o[6 * n..6 * n + 9];
+    let prismatic: Vec<&str> = chain
+        .kinds()
+        .map(|k| {
+            if k == JointKind::Prismatic {
+                "true"
+            } else {
+                "false"
+            }
+        })
+        .collect();
+    let result = format!(
+        "::kinegen::ik::geometry::Geometry {{ h: [{}], p: [{}], prismatic: [{}], r_tool: ::kinegen::ik::geometry::M3::new({}), p_tool: {} }}",
+        h.join(", "),
+        p.join(", "),
+        prismatic.join(", "),
+        r.join(", "),
+        v3(&o[6 * n + 9..6 * n + 12])
+    );
+    Method {
+        doc: "The joint axes `h`, a point `p` on each, and the tool pose at `q = 0`, in the base \
+              frame, from this robot's parameters: the product-of-exponentials geometry the \
+              closed-form solver reads."
+            .into(),
+        name: "ik_geometry",
+        rates: false,
+        ret: format!("::kinegen::ik::geometry::Geometry<{n}>"),
+        body: MethodBody::Custom {
+            args: String::new(),
+            lets: body.lets,
+            result,
+        },
+    }
+}

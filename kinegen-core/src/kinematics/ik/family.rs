@@ -1,0 +1,376 @@
+//! Which closed-form family a chain belongs to, decided exactly from its axes at `q = 0`
+//! ([`Axes`]), and the derivation: which subproblem gives which joint.
+//!
+//! Families (IK-Geo's names; all quadratics at most):
+//!
+//! | family | condition | robots |
+//! |---|---|---|
+//! | three parallel, two intersecting | h2 ∥ h3 ∥ h4, h5 ∩ h6 | UR3/5/10, e-series |
+//! | spherical wrist, two parallel | h4, h5, h6 meet; h2 ∥ h3 | PUMA 560, KUKA KR, ABB IRB |
+//! | spherical wrist, two intersecting | h4, h5, h6 meet; h1 ∩ h2 | (iiwa with joint 3 locked) |
+//! | spherical wrist, two intersecting, prismatic 3 | as above, joint 3 prismatic | Stanford arm |
+//! | planar | every axis along world z; task rows x, y (+ rz, + z) | planar 2R/3R, SCARA |
+//!
+//! A 7-joint arm is tried with one joint locked (a run-time argument): the first of
+//! joints 3, 4, 5, 2, 6, 1, 7 whose locking leaves one of the 6-joint families — joint 3
+//! first because for an S-R-S arm (iiwa) it keeps both the shoulder's first two axes
+//! meeting and the wrist spherical, the usual redundancy parameter. Relations across the
+//! locked joint are tested with its angle left symbolic, so they hold for every value.
+
+use crate::chain::Chain;
+use crate::kinematics::frames::SymbolicChain;
+use crate::kinematics::ik::axes::Axes;
+use crate::model::robot::{JointKind, TaskRow};
+
+/// A closed-form family.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// h2 ∥ h3 ∥ h4, h5 ∩ h6.
+    ThreeParallelTwoIntersecting,
+    /// Spherical wrist, h2 ∥ h3.
+    SphericalTwoParallel,
+    /// Spherical wrist, h1 ∩ h2.
+    SphericalTwoIntersecting,
+    /// Spherical wrist, h1 ∩ h2, joint 3 prismatic.
+    SphericalTwoIntersectingPrismatic,
+    /// All axes along world z: revolute joints (2 or 3, 0-based) and at most one
+    /// prismatic joint, solving task rows x, y (rz with 3 revolute joints, z with the
+    /// prismatic one).
+    Planar {
+        /// Revolute joints, in order.
+        revolute: Vec<usize>,
+        /// The prismatic joint, if any.
+        prismatic: Option<usize>,
+    },
+}
+
+/// How a robot's IK is generated.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct IkPlan {
+    /// The family.
+    pub family: Family,
+    /// The joint locked (0-based) for a 7-joint arm.
+    pub locked: Option<usize>,
+    /// One-line name for `IK_FAMILY`.
+    pub name: String,
+    /// The derivation, one line per step, with the robot's joint numbers.
+    pub steps: Vec<String>,
+    /// Most solutions a pose can have.
+    pub max_solutions: usize,
+}
+
+impl Family {
+    /// The runtime solver in `kinegen::ik::families`.
+    pub fn solver(&self) -> &'static str {
+        match self {
+            Family::ThreeParallelTwoIntersecting => "three_parallel_two_intersecting",
+            Family::SphericalTwoParallel => "spherical_two_parallel",
+            Family::SphericalTwoIntersecting => "spherical_two_intersecting",
+            Family::SphericalTwoIntersectingPrismatic => "spherical_two_intersecting_prismatic",
+            Family::Planar { .. } => "planar",
+        }
+    }
+
+    fn title(&self) -> &'static str {
+        match self {
+            Family::ThreeParallelTwoIntersecting => "three parallel, two intersecting",
+            Family::SphericalTwoParallel => "spherical wrist, two parallel",
+            Family::SphericalTwoIntersecting => "spherical wrist, two intersecting",
+            Family::SphericalTwoIntersectingPrismatic => {
+                "spherical wrist, two intersecting, prismatic joint 3"
+            }
+            Family::Planar { .. } => "planar",
+        }
+    }
+}
+
+/// Why a chain gets no closed form without anything being wrong with it: no family is
+/// defined for its number of joints (only 6-joint arms, 7-joint arms with a locked joint,
+/// and arms with task rows are tried). No note is given for it.
+pub const OUT_OF_DOMAIN: &str = "no family is defined for this number of joints";
+
+/// The plan for `chain`, or why there is none (each family's first broken condition,
+/// naming the axes; [`OUT_OF_DOMAIN`] when no family applies to it at all).
+pub fn plan(chain: &Chain, max_terms: usize) -> Result<IkPlan, String> {
+    let n = chain.dof();
+    let kinds: Vec<JointKind> = chain.kinds().collect();
+    let full = chain.task.as_ref().is_none_or(|t| t.len() == 6);
+    if !full {
+        return planar(chain, max_terms, &kinds);
+    }
+    match n {
+        6 => {
+            let sym = SymbolicChain::at_zero(chain, max_terms, None);
+            let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
+            let labels: Vec<usize> = (0..6).collect();
+            six(&axes, &kinds, &labels).map(|(family, steps)| finish(family, None, steps))
+        }
+        7 => seven(chain, max_terms, &kinds),
+        _ => Err(OUT_OF_DOMAIN.into()),
+    }
+}
+
+fn finish(family: Family, locked: Option<usize>, steps: Vec<String>) -> IkPlan {
+    let name = match locked {
+        Some(k) => format!("{} (joint {} locked)", family.title(), k + 1),
+        None => family.title().to_string(),
+    };
+    let max_solutions = match family {
+        Family::Planar { .. } => 2,
+        _ => 8,
+    };
+    IkPlan {
+        family,
+        locked,
+        name,
+        steps,
+        max_solutions,
+    }
+}
+
+/// The 6-joint families for axes `labels` (the robot's joint indices, 0-based) of `axes`.
+fn six(
+    axes: &Axes,
+    kinds: &[JointKind],
+    labels: &[usize],
+) -> Result<(Family, Vec<String>), String> {
+    let j = |i: usize| labels[i] + 1;
+    let all_revolute = labels.iter().all(|&i| kinds[i] == JointKind::Revolute);
+    let mut why = Vec::new();
+    // Three parallel, two intersecting.
+    let c = if !all_revolute {
+        Err("a joint is prismatic".to_string())
+    } else if !axes.parallel(labels[1], labels[2]) || !axes.parallel(labels[2], labels[3]) {
+        Err(format!(
+            "axes {}, {}, {} are not parallel",
+            j(1),
+            j(2),
+            j(3)
+        ))
+    } else if !axes.intersect(labels[4], labels[5]) {
+        Err(format!("axes {} and {} do not meet", j(4), j(5)))
+    } else if axes.parallel(labels[0], labels[1]) {
+        Err(format!("axis {} is parallel to axis {}", j(0), j(1)))
+    } else {
+        Ok(())
+    };
+    match c {
+        Ok(()) => return Ok((Family::ThreeParallelTwoIntersecting, steps_ur(j))),
+        Err(e) => why.push(format!("h2 ∥ h3 ∥ h4, h5 ∩ h6: {e}")),
+    }
+    // The spherical-wrist families.
+    let wrist = axes.concurrent(labels[3], labels[4], labels[5]);
+    let wrist_why = format!("axes {}, {}, {} do not meet in one point", j(3), j(4), j(5));
+    let arm_revolute = labels[..2].iter().all(|&i| kinds[i] == JointKind::Revolute)
+        && labels[3..].iter().all(|&i| kinds[i] == JointKind::Revolute);
+    let third = kinds[labels[2]];
+    if !arm_revolute {
+        why.push("spherical wrist: joints 1, 2, 4, 5, 6 must be revolute".into());
+    } else if !wrist {
+        why.push(format!("spherical wrist: {wrist_why}"));
+    } else if third == JointKind::Revolute
+        && axes.parallel(labels[1], labels[2])
+        && !axes.parallel(labels[0], labels[1])
+    {
+        return Ok((Family::SphericalTwoParallel, steps_spherical_parallel(j)));
+    } else if axes.intersect(labels[0], labels[1]) {
+        return Ok(match third {
+            JointKind::Revolute => (
+                Family::SphericalTwoIntersecting,
+                steps_spherical_intersecting(j, false),
+            ),
+            JointKind::Prismatic => (
+                Family::SphericalTwoIntersectingPrismatic,
+                steps_spherical_intersecting(j, true),
+            ),
+        });
+    } else {
+        why.push(format!(
+            "spherical wrist: neither h{} ∥ h{} (with h{} ∦ h{}) nor h{} ∩ h{}",
+            j(1),
+            j(2),
+            j(0),
+            j(1),
+            j(0),
+            j(1)
+        ));
+    }
+    Err(why.join("; "))
+}
+
+/// A 7-joint arm with one joint locked.
+fn seven(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan, String> {
+    let mut why = Vec::new();
+    for k in [2, 3, 4, 1, 5, 0, 6] {
+        let sym = SymbolicChain::at_zero(chain, max_terms, Some(k));
+        let Some(axes) = Axes::of(&sym) else {
+            why.push(format!("joint {} locked: over the term budget", k + 1));
+            continue;
+        };
+        let labels: Vec<usize> = (0..7).filter(|&i| i != k).collect();
+        match six(&axes, kinds, &labels) {
+            Ok((family, steps)) => return Ok(finish(family, Some(k), steps)),
+            Err(e) => {
+                let rest: Vec<String> = labels.iter().map(|i| (i + 1).to_string()).collect();
+                why.push(format!(
+                    "joint {} locked (family joints 1–6 = joints {}): {e}",
+                    k + 1,
+                    rest.join(", ")
+                ))
+            }
+        }
+    }
+    Err(why.join("; "))
+}
+
+/// Planar arms solving their task rows.
+fn planar(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan, String> {
+    let task = chain.task.clone().unwrap_or_default();
+    let sym = SymbolicChain::at_zero(chain, max_terms, None);
+    let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
+    let z = crate::kinematics::ik::axes::unit_z();
+    if let Some(i) = (0..chain.dof()).find(|&i| !axes.along(i, &z)) {
+        return Err(format!("planar: axis {} is not along world z", i + 1));
+    }
+    let revolute: Vec<usize> = (0..chain.dof())
+        .filter(|&i| kinds[i] == JointKind::Revolute)
+        .collect();
+    let prismatic: Vec<usize> = (0..chain.dof())
+        .filter(|&i| kinds[i] == JointKind::Prismatic)
+        .collect();
+    let mut want = vec![TaskRow::X, TaskRow::Y];
+    if revolute.len() == 3 {
+        want.push(TaskRow::Rz);
+    }
+    if prismatic.len() == 1 {
+        want.push(TaskRow::Z);
+    }
+    let mut have = task.clone();
+    have.sort();
+    want.sort();
+    if !(2..=3).contains(&revolute.len()) || prismatic.len() > 1 || have != want {
+        return Err(format!(
+            "planar: {} revolute and {} prismatic joints along z with task rows [{}] (planar IK \
+             solves x, y with 2 revolute joints, + rz with 3, + z with one prismatic joint)",
+            revolute.len(),
+            prismatic.len(),
+            task.iter().map(|r| r.name()).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    let steps = steps_planar(&revolute, prismatic.first().copied());
+    let family = Family::Planar {
+        revolute,
+        prismatic: prismatic.first().copied(),
+    };
+    Ok(finish(family, None, steps))
+}
+
+fn steps_ur(j: impl Fn(usize) -> usize) -> Vec<String> {
+    vec![
+        format!("p16 = p0T − R06 p6T − p1, with p6T from the point where axes {} and {} meet", j(4), j(5)),
+        format!("q{} — SP4: h{b}ᵀ rot(−h{a}, q{a}) p16 = h{b}ᵀ (p12 + p23 + p34 + p45) (two roots)", j(0), a = j(0), b = j(1)),
+        format!("q{} — SP4: h{}ᵀ rot(h{e}, q{e}) h{} = h{}ᵀ R1ᵀ R06 h{} (two roots)", j(4), j(1), j(5), j(1), j(5), e = j(4)),
+        format!("θ = q{} ± q{} ± q{} — SP1: rot(h{}, θ) R{} h{} = R1ᵀ R06 h{} (singular when R{} h{} ∥ h{}: q{} is then free)", j(1), j(2), j(3), j(1), j(4), j(5), j(5), j(4), j(5), j(1), j(5)),
+        format!("q{} — SP3: ‖p23 + rot(h{}, q{}) p34‖ = ‖R1ᵀ p16 − p12 − rot(h{}, θ) p45‖ (two roots)", j(2), j(2), j(2), j(1)),
+        format!("q{} — SP1; q{} from θ", j(1), j(3)),
+        format!("q{} — SP1: rot(h{}, q{}) h{} = (R1 ⋯ R5)ᵀ R06 h{}", j(5), j(5), j(5), j(4), j(4)),
+    ]
+}
+
+fn steps_spherical_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {
+    let mut s = vec![
+        format!(
+            "wrist centre w = p0T − R06 p6T (axes {}, {}, {} meet there); p16 = w − p1",
+            j(3),
+            j(4),
+            j(5)
+        ),
+        format!(
+            "q{a} — SP4: h{b}ᵀ rot(−h{a}, q{a}) p16 = h{b}ᵀ (p12 + p23 + p34) (two roots)",
+            a = j(0),
+            b = j(1)
+        ),
+        format!(
+            "q{c} — SP3: ‖p23 + rot(h{c}, q{c}) p34‖ = ‖rot(−h{a}, q{a}) p16 − p12‖ (two roots)",
+            a = j(0),
+            c = j(2)
+        ),
+        format!(
+            "q{b} — SP1: rot(h{b}, q{b}) (p23 + R{c} p34) = rot(−h{a}, q{a}) p16 − p12",
+            a = j(0),
+            b = j(1),
+            c = j(2)
+        ),
+    ];
+    s.extend(wrist_steps(&j));
+    s
+}
+
+fn steps_spherical_intersecting(j: impl Fn(usize) -> usize, prismatic: bool) -> Vec<String> {
+    let mut s = vec![format!(
+        "wrist centre w = p0T − R06 p6T (axes {}, {}, {} meet there); p16 = w − c12 (axes {} and {} meet at c12)",
+        j(3),
+        j(4),
+        j(5),
+        j(0),
+        j(1)
+    )];
+    if prismatic {
+        s.push(format!(
+            "q{c} — ‖u + q{c} h{c}‖ = ‖p16‖ with u = p23 + p34 (a quadratic, two roots)",
+            c = j(2)
+        ));
+    } else {
+        s.push(format!(
+            "q{c} — SP3: ‖p23 + rot(h{c}, q{c}) p34‖ = ‖p16‖ (two roots)",
+            c = j(2)
+        ));
+    }
+    s.push(format!(
+        "(q{a}, q{b}) — SP2: rot(−h{a}, q{a}) p16 = rot(h{b}, q{b}) (arm vector) (two pairs; q{a} free when w is on axis {a})",
+        a = j(0),
+        b = j(1)
+    ));
+    s.extend(wrist_steps(&j));
+    s
+}
+
+fn wrist_steps(j: &impl Fn(usize) -> usize) -> Vec<String> {
+    vec![
+        format!("R36 = (R{} R{} R{})ᵀ R06", j(0), j(1), j(2)),
+        format!("q{e} — SP4: h{d}ᵀ rot(h{e}, q{e}) h{f} = h{d}ᵀ R36 h{f} (two roots)", d = j(3), e = j(4), f = j(5)),
+        format!("q{d} — SP1: rot(h{d}, q{d}) R{e} h{f} = R36 h{f} (singular when R{e} h{f} ∥ h{d}: q{d} is then free, q{f} from the whole rotation)", d = j(3), e = j(4), f = j(5)),
+        format!("q{f} — SP1: rot(h{f}, q{f})ᵀ R{e}ᵀ h{d} = R36ᵀ h{d}", d = j(3), e = j(4), f = j(5)),
+    ]
+}
+
+fn steps_planar(revolute: &[usize], prismatic: Option<usize>) -> Vec<String> {
+    let r: Vec<usize> = revolute.iter().map(|i| i + 1).collect();
+    let mut s = Vec::new();
+    if r.len() == 3 {
+        s.push(format!(
+            "φ = the tool's angle about z; the point on axis {c} is p{c} = p − rot(z, φ − φ0) (pT − p{c})",
+            c = r[2]
+        ));
+    }
+    let (w, end) = match r.get(2) {
+        Some(c) => (format!("p{c}"), format!("p{}{c}", r[1])),
+        None => ("p".to_string(), format!("p{}T", r[1])),
+    };
+    s.push(format!(
+        "q{b} — SP3 in the xy plane: ‖p{a}{b} + rot(h{b}, q{b}) {end}‖ = ‖{w} − p{a}‖ (elbow up / down)",
+        a = r[0],
+        b = r[1]
+    ));
+    s.push(format!("q{} — SP1", r[0]));
+    if r.len() == 3 {
+        s.push(format!(
+            "q{} from φ = ±q{} ± q{} ± q{} + φ0",
+            r[2], r[0], r[1], r[2]
+        ));
+    }
+    if let Some(p) = prismatic {
+        s.push(format!("q{} from z (it moves along z)", p + 1));
+    }
+    s
+}

@@ -1,0 +1,74 @@
+//! Closed-form inverse kinematics, planned at expansion time: the joint axes at `q = 0`
+//! classified exactly ([`axes`]), the family and its derivation chosen ([`family`]), and
+//! the zero-configuration geometry the generated code hands to the runtime solver.
+
+pub mod axes;
+pub mod family;
+
+use crate::algebra::graph::Id;
+use crate::chain::Chain;
+use crate::kinematics::frames::SymbolicChain;
+use family::{plan, IkPlan};
+
+/// What the generated `ik` needs: the plan and the geometry's nodes.
+#[derive(Clone, Debug)]
+pub struct IkModel {
+    /// Family, locked joint, derivation.
+    pub plan: IkPlan,
+    /// The frames at `q = 0` (every joint at its zero): the graph of the nodes below.
+    pub zero: SymbolicChain,
+    /// Per joint: axis (3 nodes) then point (3 nodes); then the tool's rotation
+    /// (row-major, 9) and position (3).
+    pub ids: Vec<Id>,
+}
+
+/// The IK model of `chain`, or why it has none (naming the axes that break each
+/// family's condition).
+pub fn model(chain: &Chain, max_terms: usize) -> Result<IkModel, String> {
+    let plan = plan(chain, max_terms)?;
+    let zero = SymbolicChain::at_zero(chain, max_terms, None);
+    let mut ids = Vec::new();
+    for (h, p) in &zero.axes {
+        ids.extend(h);
+        ids.extend(p);
+    }
+    for row in zero.tool.rows() {
+        ids.extend(&row[..3]);
+    }
+    ids.extend(zero.tool.p);
+    Ok(IkModel { plan, zero, ids })
+}
+
+/// The zero-configuration geometry as numbers, with the chain's parameter values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeometryValues {
+    /// Unit joint axes.
+    pub h: Vec<[f64; 3]>,
+    /// A point on each axis.
+    pub p: Vec<[f64; 3]>,
+    /// Which joints are prismatic.
+    pub prismatic: Vec<bool>,
+    /// Tool rotation at `q = 0`, row-major.
+    pub r_tool: [[f64; 3]; 3],
+    /// Tool position at `q = 0`.
+    pub p_tool: [f64; 3],
+}
+
+impl IkModel {
+    /// The geometry's numeric values (what the generated `ik_geometry` returns).
+    pub fn values(&self, chain: &Chain) -> GeometryValues {
+        let n = chain.dof();
+        let v = self.zero.eval(chain, &vec![0.0; n], &self.ids);
+        let v3 = |k: usize| [v[k], v[k + 1], v[k + 2]];
+        GeometryValues {
+            h: (0..n).map(|i| v3(6 * i)).collect(),
+            p: (0..n).map(|i| v3(6 * i + 3)).collect(),
+            prismatic: chain
+                .kinds()
+                .map(|k| k == crate::model::robot::JointKind::Prismatic)
+                .collect(),
+            r_tool: [v3(6 * n), v3(6 * n + 3), v3(6 * n + 6)],
+            p_tool: v3(6 * n + 9),
+        }
+    }
+}

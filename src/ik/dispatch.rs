@@ -1,0 +1,189 @@
+//! Closed-form IK chosen at run time, for tools that read a robot at run time (the
+//! `kinegen` CLI, tests over random tables): the family named by its solver, the joint
+//! count a value, results in `Vec`s. Needs `std`. Generated code calls the family
+//! solvers directly, on fixed sizes.
+
+use std::string::String;
+use std::vec::Vec;
+
+use super::families;
+use super::geometry::{Geometry, Pose, M3, V3};
+use super::solutions::{finish, with_locked, without, Candidates, Check, IkSolutions};
+
+/// A robot's zero-configuration geometry as numbers (see [`Geometry`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DynGeometry {
+    /// Unit joint axes.
+    pub h: Vec<[f64; 3]>,
+    /// A point on each axis.
+    pub p: Vec<[f64; 3]>,
+    /// Which joints are prismatic.
+    pub prismatic: Vec<bool>,
+    /// Tool rotation at `q = 0`, row-major.
+    pub r_tool: [[f64; 3]; 3],
+    /// Tool position at `q = 0`.
+    pub p_tool: [f64; 3],
+}
+
+/// Which solver, and its arguments.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DynPlan {
+    /// The function of [`families`] (`"three_parallel_two_intersecting"`, …).
+    pub solver: String,
+    /// For `planar`: the revolute joints (0-based).
+    pub revolute: Vec<usize>,
+    /// For `planar`: the prismatic joint.
+    pub prismatic: Option<usize>,
+    /// The locked joint of a 7-joint arm.
+    pub locked: Option<usize>,
+}
+
+/// One solution (see [`super::IkBranch`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DynBranch {
+    /// Joint values.
+    pub q: Vec<f64>,
+    /// Reaches the pose.
+    pub exact: bool,
+    /// Measured `max |fk − pose|` (0 when not measured).
+    pub residual: f64,
+    /// Vanishing singular factors (bits).
+    pub singular: u32,
+    /// A subproblem met a singular configuration.
+    pub at_singularity: bool,
+    /// Within the limits.
+    pub within_limits: bool,
+}
+
+/// What the caller evaluates for a candidate.
+pub struct Checks<'a> {
+    /// `max |fk(q) − pose|` (or the task-row error).
+    pub residual: &'a dyn Fn(&[f64]) -> f64,
+    /// Bits of the singular factors vanishing at `q`.
+    pub singular: &'a dyn Fn(&[f64]) -> u32,
+}
+
+impl<const N: usize> Check<N> for Checks<'_> {
+    fn residual(&self, q: &[f64; N], _pose: &Pose) -> f64 {
+        (self.residual)(q)
+    }
+    fn singular(&self, q: &[f64; N]) -> u32 {
+        (self.singular)(q)
+    }
+}
+
+/// The whole input of one solve.
+pub struct DynProblem<'a> {
+    /// The solver.
+    pub plan: &'a DynPlan,
+    /// The geometry.
+    pub geometry: &'a DynGeometry,
+    /// The target, row-major 4×4.
+    pub pose: [[f64; 4]; 4],
+    /// The locked joint's value (7-joint arms).
+    pub q_locked: f64,
+    /// Values for the joints a singular pose leaves free (one per joint).
+    pub free: &'a [f64],
+    /// Which joints are revolute.
+    pub revolute: &'a [bool],
+    /// Joint limits.
+    pub limits: &'a [[f64; 2]],
+}
+
+fn geometry<const N: usize>(g: &DynGeometry) -> Geometry<N> {
+    let v = |x: &[f64; 3]| V3::new(x[0], x[1], x[2]);
+    let r = &g.r_tool;
+    Geometry {
+        h: core::array::from_fn(|i| v(&g.h[i])),
+        p: core::array::from_fn(|i| v(&g.p[i])),
+        prismatic: core::array::from_fn(|i| g.prismatic[i]),
+        r_tool: M3::new(
+            r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
+        ),
+        p_tool: v(&g.p_tool),
+    }
+}
+
+fn branches<const N: usize, const K: usize>(s: &IkSolutions<N, K>) -> Vec<DynBranch> {
+    s.iter()
+        .map(|b| DynBranch {
+            q: b.q.to_vec(),
+            exact: b.exact,
+            residual: b.residual,
+            singular: b.singular,
+            at_singularity: b.at_singularity,
+            within_limits: b.within_limits,
+        })
+        .collect()
+}
+
+fn finished<const N: usize, const K: usize>(
+    c: &Candidates<N, K>,
+    pr: &DynProblem,
+    checks: &Checks,
+) -> Vec<DynBranch> {
+    let pose = Pose::from_matrix(&pr.pose);
+    let revolute: [bool; N] = core::array::from_fn(|i| pr.revolute[i]);
+    let limits: [[f64; 2]; N] = core::array::from_fn(|i| pr.limits[i]);
+    branches(&finish(c, &pose, &revolute, &limits, checks))
+}
+
+fn six(name: &str, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
+    Some(match name {
+        "three_parallel_two_intersecting" => {
+            families::three_parallel_two_intersecting(g, pose, free)
+        }
+        "spherical_two_parallel" => families::spherical_two_parallel(g, pose, free),
+        "spherical_two_intersecting" => families::spherical_two_intersecting(g, pose, free),
+        "spherical_two_intersecting_prismatic" => {
+            families::spherical_two_intersecting_prismatic(g, pose, free)
+        }
+        _ => return None,
+    })
+}
+
+fn planar<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
+    let g = geometry::<N>(pr.geometry);
+    let free: [f64; N] = core::array::from_fn(|i| pr.free[i]);
+    let pose = Pose::from_matrix(&pr.pose);
+    let c = families::planar(&g, &pose, &pr.plan.revolute, pr.plan.prismatic, &free);
+    finished(&c, pr, checks)
+}
+
+/// Every solution of `pr.pose`; `Err` for a solver or joint count no family has.
+pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'static str> {
+    let n = pr.geometry.h.len();
+    if pr.free.len() != n || pr.revolute.len() != n || pr.limits.len() != n {
+        return Err("the free values, joint kinds and limits must have one entry per joint");
+    }
+    let pose = Pose::from_matrix(&pr.pose);
+    if !pose.is_finite() || pr.free.iter().any(|x| !x.is_finite()) || !pr.q_locked.is_finite() {
+        return Ok(Vec::new());
+    }
+    if pr.plan.solver == "planar" {
+        return match n {
+            2 => Ok(planar::<2>(pr, checks)),
+            3 => Ok(planar::<3>(pr, checks)),
+            4 => Ok(planar::<4>(pr, checks)),
+            _ => Err("planar IK is for 2 to 4 joints"),
+        };
+    }
+    match (n, pr.plan.locked) {
+        (6, None) => {
+            let g = geometry::<6>(pr.geometry);
+            let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
+            let c = six(&pr.plan.solver, &g, &pose, &free).ok_or("unknown solver")?;
+            Ok(finished(&c, pr, checks))
+        }
+        (7, Some(k)) => {
+            let g7 = geometry::<7>(pr.geometry);
+            let g: Geometry<6> = g7.lock(k, pr.q_locked);
+            let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
+            let free: [f64; 6] = without(&free7, k);
+            let c6 = six(&pr.plan.solver, &g, &pose, &free).ok_or("unknown solver")?;
+            let c = with_locked::<6, 7, 8>(&c6, k, pr.q_locked);
+            Ok(finished(&c, pr, checks))
+        }
+        _ => Err("closed-form IK is for 6 joints, or 7 with one locked"),
+    }
+}

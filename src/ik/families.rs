@@ -1,0 +1,447 @@
+//! The arm families with closed-form IK from subproblems SP1–SP4 (quadratics at most),
+//! after IK-Geo (Elias & Wen) and EAIK (Ostermeier et al.). The engine decides at
+//! expansion time, exactly, which family a robot belongs to; these functions solve a pose
+//! for a [`Geometry`] that has the family's structure.
+//!
+//! Each takes `free`: the joint values used where the pose leaves a joint undetermined
+//! (a singular configuration — UR or spherical wrist with `h4 ∥ h6`, wrist centre on
+//! axis 1). `ik_near` passes the current configuration, so the answer is continuous.
+//!
+//! Joint numbers in the docs are 1-based, as in the robot's tables; `h`, `p` indices are
+//! 0-based.
+
+use super::geometry::{closest_points, rot, Geometry, Pose, M3, V3};
+use super::solutions::Candidates;
+use super::subproblems::{sp1, sp2, sp3, sp4, wrap, Fit};
+
+/// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
+const PARALLEL: f64 = 1e-20;
+
+/// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
+/// closest points: the engine proved they meet, this only absorbs rounding).
+fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
+    match closest_points(&g.p[i], &g.h[i], &g.p[j], &g.h[j], PARALLEL) {
+        Some((a, b)) => (a + b) * 0.5,
+        None => g.p[i],
+    }
+}
+
+/// The part of `v` orthogonal to the unit `k`.
+fn flat(k: &V3, v: &V3) -> V3 {
+    v - k * k.dot(v)
+}
+
+/// A vector orthogonal to the unit `k`.
+fn orthogonal(k: &V3) -> V3 {
+    let e = if k.x.abs() < 0.6 {
+        V3::x()
+    } else if k.y.abs() < 0.6 {
+        V3::y()
+    } else {
+        V3::z()
+    };
+    k.cross(&e)
+}
+
+/// The spherical wrist (joints 4, 5, 6 meet in a point): `(q4, q5, q6)` with
+/// `R4 R5 R6 = r36`. SP4 for q5, SP1 for q4 and q6; at `h4 ∥ R5 h6` (q5 at its singular
+/// value) q4 is free and q6 is taken from the whole rotation.
+fn wrist(h: &[V3; 3], r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) -> usize {
+    let [h4, h5, h6] = h;
+    let t5 = sp4(h4, h6, h5, h4.dot(&(r36 * h6)), 0.0);
+    for (o, &q5) in out.iter_mut().zip(t5.as_slice()) {
+        let r5 = rot(h5, q5);
+        let (q4, f4) = sp1(&(r5 * h6), &(r36 * h6), h4, free[0]);
+        let (q6, f6) = if f4 == Fit::Free {
+            // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ r36.
+            let m = (rot(h4, q4) * r5).transpose() * r36;
+            let x = orthogonal(h6);
+            sp1(&x, &(m * x), h6, free[1])
+        } else {
+            // R6 (R36ᵀ h4) = R5ᵀ h4, since R36ᵀ h4 = R6ᵀ R5ᵀ h4.
+            sp1(&(r36.transpose() * h4), &(r5.transpose() * h4), h6, free[1])
+        };
+        *o = ([q4, q5, q6], t5.fit.and(f4).and(f6));
+    }
+    t5.n
+}
+
+/// The rotation of the wrist: `R36 = (R1 R2 R3)ᵀ R06` (a prismatic joint turns nothing).
+fn r36(g: &Geometry<6>, q: [f64; 3], r06: &M3) -> M3 {
+    let r = |i: usize| {
+        if g.prismatic[i] {
+            M3::identity()
+        } else {
+            rot(&g.h[i], q[i])
+        }
+    };
+    (r(0) * r(1) * r(2)).transpose() * r06
+}
+
+/// Adds the wrist solutions for the arm joints `q123` to `out`.
+fn with_wrist(
+    g: &Geometry<6>,
+    q123: [f64; 3],
+    fit: Fit,
+    r06: &M3,
+    free: &[f64; 6],
+    out: &mut Candidates<6, 8>,
+) {
+    let r = r36(g, q123, r06);
+    let mut w = [([0.0; 3], Fit::Exact); 2];
+    let n = wrist(&[g.h[3], g.h[4], g.h[5]], &r, [free[3], free[5]], &mut w);
+    for &(q456, f) in &w[..n] {
+        let q = [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
+        out.push(q, fit.and(f));
+    }
+}
+
+/// `R06 = R0T r_toolᵀ` and the wrist centre `w` (joints 4, 5, 6 meet there) of the
+/// target, with `w` at `q = 0`.
+fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
+    let w0 = meet(g, 3, 4);
+    let r06 = pose.r * g.r_tool.transpose();
+    let target = pose.p - r06 * (g.p_tool - w0);
+    (r06, w0, target)
+}
+
+/// **Spherical wrist, h2 ∥ h3** (PUMA 560, KUKA KR, ABB IRB 120/140):
+///
+/// 1. wrist centre `w = p0T − R06 p6T`; `p16 = w − p1`
+/// 2. q1 — SP4: `h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34)` (rotations about
+///    h2 ∥ h3 keep the h2 component)
+/// 3. q3 — SP3: `‖p23 + rot(h3, q3) p34‖ = ‖rot(−h1, q1) p16 − p12‖`
+/// 4. q2 — SP1: `rot(h2, q2) (p23 + R3 p34) = rot(−h1, q1) p16 − p12`
+/// 5. q5 — SP4, q4 and q6 — SP1 on `R36 = (R1 R2 R3)ᵀ R06`.
+pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Candidates<6, 8> {
+    let mut out = Candidates::default();
+    let (r06, w0, w) = wrist_centre(g, pose);
+    let [h1, h2, h3, ..] = g.h;
+    let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
+    let p16 = w - g.p[0];
+    let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), free[0]);
+    for &q1 in t1.as_slice() {
+        let v = rot(&(-h1), q1) * p16 - p12;
+        // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial
+        // offsets in the distances, whose rounding would blur the elbow's double root.
+        let t3 = sp3(
+            &flat(&h3, &p34),
+            &flat(&h3, &(-p23)),
+            &h3,
+            flat(&h3, &v).norm(),
+            free[2],
+        );
+        for &q3 in t3.as_slice() {
+            let (q2, f2) = sp1(&(p23 + rot(&h3, q3) * p34), &v, &h2, free[1]);
+            let fit = t1.fit.and(t3.fit).and(f2);
+            with_wrist(g, [q1, q2, q3], fit, &r06, free, &mut out);
+        }
+    }
+    out
+}
+
+/// **Spherical wrist, h1 ∩ h2** (the shoulder axes meet):
+///
+/// 1. `p16 = w − c12`, `c12` where axes 1 and 2 meet
+/// 2. q3 — SP3: `‖p23 + rot(h3, q3) p34‖ = ‖p16‖`
+/// 3. (q1, q2) — SP2: `rot(−h1, q1) p16 = rot(h2, q2) (p23 + R3 p34)`
+/// 4. wrist as above.
+pub fn spherical_two_intersecting(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+) -> Candidates<6, 8> {
+    let mut out = Candidates::default();
+    let (r06, w0, w) = wrist_centre(g, pose);
+    let c12 = meet(g, 0, 1);
+    let [h1, h2, h3, ..] = g.h;
+    let (p23, p34) = (g.p[2] - c12, w0 - g.p[2]);
+    let p16 = w - c12;
+    let t3 = sp3(&p34, &(-p23), &h3, p16.norm(), free[2]);
+    for &q3 in t3.as_slice() {
+        let arm = p23 + rot(&h3, q3) * p34;
+        let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
+        for &(q1, q2) in &t12[..n] {
+            with_wrist(g, [q1, q2, q3], t3.fit.and(f12), &r06, free, &mut out);
+        }
+    }
+    out
+}
+
+/// **Spherical wrist, h1 ∩ h2, joint 3 prismatic** (the Stanford arm):
+///
+/// 1. `p16 = w − c12`; with `u = p23 + p34`, q3 from `‖u + q3 h3‖ = ‖p16‖` (a quadratic)
+/// 2. (q1, q2) — SP2: `rot(−h1, q1) p16 = rot(h2, q2) (u + q3 h3)`
+/// 3. wrist as above.
+pub fn spherical_two_intersecting_prismatic(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+) -> Candidates<6, 8> {
+    let mut out = Candidates::default();
+    let (r06, w0, w) = wrist_centre(g, pose);
+    let c12 = meet(g, 0, 1);
+    let [h1, h2, h3, ..] = g.h;
+    let u = w0 - c12;
+    let p16 = w - c12;
+    // q3² + 2 b q3 + c = 0
+    let b = h3.dot(&u);
+    let c = u.norm_squared() - p16.norm_squared();
+    let disc = b * b - c;
+    let terms = b * b + u.norm_squared() + p16.norm_squared();
+    let merge = super::subproblems::ROOT_MERGE * f64::EPSILON * terms;
+    let (roots, fit): ([f64; 2], Fit) = if disc.abs() <= merge {
+        ([-b, -b], Fit::Double)
+    } else if disc < 0.0 {
+        ([-b, -b], Fit::LeastSquares)
+    } else {
+        let s = disc.sqrt();
+        ([-b + s, -b - s], Fit::Exact)
+    };
+    let n3 = if fit == Fit::Exact { 2 } else { 1 };
+    for &q3 in &roots[..n3] {
+        let arm = u + h3 * q3;
+        let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
+        for &(q1, q2) in &t12[..n] {
+            with_wrist(g, [q1, q2, q3], fit.and(f12), &r06, free, &mut out);
+        }
+    }
+    out
+}
+
+/// **h2 ∥ h3 ∥ h4, h5 ∩ h6** (Universal Robots):
+///
+/// 1. `p16 = p0T − R06 p6T − p1` (`p6T` from where axes 5 and 6 meet)
+/// 2. q1 — SP4: `h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34 + p45)`
+/// 3. q5 — SP4: `h2ᵀ rot(h5, q5) h6 = h2ᵀ R1ᵀ R06 h6`
+/// 4. `θ = q2 ± q3 ± q4` — SP1: `rot(h2, θ) R5 h6 = R1ᵀ R06 h6`
+/// 5. q3 — SP3, q2 — SP1 on `d = R1ᵀ p16 − p12 − rot(h2, θ) p45`; q4 from θ
+/// 6. q6 — SP1: `rot(h6, q6) h5 = (R1 R2 R3 R4 R5)ᵀ R06 h5`.
+///
+/// At the wrist singularity (`R5 h6 ∥ h2`, so h6 ∥ h2 ∥ h3 ∥ h4) the orientation fixes
+/// only `θ ± q6`; the position then fixes q2, q3 once q4 is chosen: q4 = `free`, q3 — SP3
+/// and q2 — SP1 on the arm `p23 + R3 (p34 + R4 p45)`, q6 from the rotation.
+pub fn three_parallel_two_intersecting(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+) -> Candidates<6, 8> {
+    let mut out = Candidates::default();
+    let c56 = meet(g, 4, 5);
+    let r06 = pose.r * g.r_tool.transpose();
+    let [h1, h2, h3, h4, h5, h6] = g.h;
+    // h3 = σ3 h2, h4 = σ4 h2 (the engine proved them parallel).
+    let (s3, s4) = (h3.dot(&h2).signum(), h4.dot(&h2).signum());
+    let (p12, p23, p34, p45) = (
+        g.p[1] - g.p[0],
+        g.p[2] - g.p[1],
+        g.p[3] - g.p[2],
+        c56 - g.p[3],
+    );
+    let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
+    let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34 + p45)), free[0]);
+    for &q1 in t1.as_slice() {
+        let r1t = rot(&h1, q1).transpose();
+        let target = r1t * r06;
+        let arm = r1t * p16 - p12;
+        let t5 = sp4(&h2, &h6, &h5, h2.dot(&(target * h6)), free[4]);
+        for &q5 in t5.as_slice() {
+            let r5 = rot(&h5, q5);
+            let (theta, ft) = sp1(&(r5 * h6), &(target * h6), &h2, 0.0);
+            let fit = t1.fit.and(t5.fit).and(ft);
+            // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist singularity q4 =
+            // free — or, when that q4 puts the wrist out of the elbow's reach, θ chosen
+            // mid-range of what the elbow can reach, nearest to free's.
+            let mut mode = if ft == Fit::Free {
+                Arm::Q4(free[3])
+            } else {
+                Arm::Theta(theta)
+            };
+            if let Arm::Q4(q4) = mode {
+                let known = p34 + rot(&h4, q4) * p45;
+                let t = sp3(
+                    &flat(&h2, &known),
+                    &flat(&h2, &(-p23)),
+                    &h3,
+                    flat(&h2, &arm).norm(),
+                    0.0,
+                );
+                if t.fit == Fit::LeastSquares {
+                    let hint = free[1] + s3 * free[2] + s4 * free[3];
+                    mode = Arm::Theta(mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint));
+                }
+            }
+            let (reach, known) = match mode {
+                Arm::Theta(theta) => (arm - rot(&h2, theta) * p45, p34),
+                Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45),
+            };
+            // In the plane ⟂ h2 (the components along h2 agree by step 2).
+            let t3 = sp3(
+                &flat(&h2, &known),
+                &flat(&h2, &(-p23)),
+                &h3,
+                flat(&h2, &reach).norm(),
+                free[2],
+            );
+            for &q3 in t3.as_slice() {
+                let (q2, f2) = sp1(&(p23 + rot(&h3, q3) * known), &reach, &h2, free[1]);
+                let (q4, theta) = match mode {
+                    Arm::Theta(theta) => (wrap(s4 * (theta - q2 - s3 * q3)), theta),
+                    Arm::Q4(q4) => (q4, q2 + s3 * q3 + s4 * q4),
+                };
+                let r14 = rot(&h2, theta);
+                let x = r5.transpose() * r14.transpose() * target * h5;
+                let (q6, f6) = sp1(&h5, &x, &h6, free[5]);
+                out.push([q1, q2, q3, q4, q5, q6], fit.and(t3.fit).and(f2).and(f6));
+            }
+        }
+    }
+    out
+}
+
+/// What fixes the UR arm's last parallel joint.
+#[derive(Clone, Copy)]
+enum Arm {
+    /// `θ = q2 ± q3 ± q4` is known.
+    Theta(f64),
+    /// q4 is (the wrist singularity's free joint).
+    Q4(f64),
+}
+
+/// At the UR wrist singularity: the `θ` nearest to `hint` that puts the wrist centre in
+/// the middle of the elbow's reach (`‖p23⊥ + R3 p34⊥‖` ranges over `[|a − b|, a + b]`
+/// across the plane ⟂ h2; the middle, `max(a, b)`, is reachable whatever the pose).
+fn mid_range_theta(h2: &V3, arm: &V3, p23: &V3, p34: &V3, p45: &V3, hint: f64) -> f64 {
+    let r = flat(h2, p23).norm().max(flat(h2, p34).norm());
+    let roots = sp3(&flat(h2, p45), &flat(h2, arm), h2, r, hint);
+    let gap = |t: f64| wrap(t - hint).abs();
+    let mut best = roots.theta[0];
+    for &t in roots.as_slice() {
+        if gap(t) < gap(best) {
+            best = t;
+        }
+    }
+    best
+}
+
+/// **Planar** — every axis along world z; solves the task rows x, y (with three revolute
+/// joints also the angle about z, with a prismatic joint also z):
+///
+/// 1. with three revolute joints, `ψ = φ − φ0` (the tool's angle about z, minus its
+///    angle at `q = 0`) fixes the last one's contribution: `w = p − rot(z, ψ) (pT − p3)`
+/// 2. the second revolute joint — SP3 in the xy plane: `‖p12 + rot(h2, q2) v‖ = ‖w − p1‖`
+///    (elbow up, elbow down)
+/// 3. the first — SP1; the third from ψ; the prismatic joint from z.
+///
+/// `revolute` lists the revolute joints (2 or 3, 0-based), `prismatic` the prismatic one.
+pub fn planar<const N: usize>(
+    g: &Geometry<N>,
+    pose: &Pose,
+    revolute: &[usize],
+    prismatic: Option<usize>,
+    free: &[f64; N],
+) -> Candidates<N, 2> {
+    let mut out = Candidates::default();
+    let flat = |v: V3| V3::new(v.x, v.y, 0.0);
+    let z = V3::z();
+    let sign = |i: usize| g.h[i].z.signum();
+    let (a, b) = (revolute[0], revolute[1]);
+    let angle = |r: &M3| crate::math::atan2(r[(1, 0)], r[(0, 0)]);
+    let psi = angle(&pose.r) - angle(&g.r_tool);
+    let (w, end) = match revolute.get(2) {
+        Some(&c) => (pose.p - rot(&z, psi) * (g.p_tool - g.p[c]), g.p[c]),
+        None => (pose.p, g.p_tool),
+    };
+    let (p_ab, v, d) = (flat(g.p[b] - g.p[a]), flat(end - g.p[b]), flat(w - g.p[a]));
+    let tb = sp3(&v, &(-p_ab), &g.h[b], d.norm(), free[b]);
+    for &qb in tb.as_slice() {
+        let u = p_ab + rot(&g.h[b], qb) * v;
+        let (qa, fa) = sp1(&u, &d, &g.h[a], free[a]);
+        let mut q = *free;
+        q[a] = qa;
+        q[b] = qb;
+        if let Some(&c) = revolute.get(2) {
+            q[c] = wrap(sign(c) * (psi - sign(a) * qa - sign(b) * qb));
+        }
+        if let Some(j) = prismatic {
+            q[j] = sign(j) * (pose.p.z - g.p_tool.z);
+        }
+        out.push(q, tb.fit.and(fa));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::subproblems::Fit;
+
+    /// UR5 (standard DH, CB3 numbers) at q = 0 in product-of-exponentials form.
+    fn ur5() -> Geometry<6> {
+        let (d1, a2, a3, d4, d5, d6) = (0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823);
+        let z = V3::z();
+        let y = V3::new(0.0, -1.0, 0.0);
+        Geometry {
+            h: [z, y, y, y, -z, y],
+            p: [
+                V3::zeros(),
+                V3::new(0.0, 0.0, d1),
+                V3::new(a2, 0.0, d1),
+                V3::new(a2 + a3, -d4, d1),
+                V3::new(a2 + a3, -d4, d1),
+                V3::new(a2 + a3, -d4, d1 - d5),
+            ],
+            prismatic: [false; 6],
+            r_tool: M3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
+            p_tool: V3::new(a2 + a3, -d4 - d6, d1 - d5),
+        }
+    }
+
+    #[test]
+    fn ur5_all_eight_and_the_generating_one() {
+        let g = ur5();
+        let q = [0.3, -1.1, 1.4, -0.6, 0.9, 2.0];
+        let pose = g.fk(&q);
+        let sols = three_parallel_two_intersecting(&g, &pose, &[0.0; 6]);
+        assert_eq!(sols.as_slice().len(), 8);
+        for c in sols.as_slice() {
+            assert_eq!(c.fit, Fit::Exact);
+            let t = g.fk(&c.q);
+            assert!(
+                (t.p - pose.p).norm() < 1e-12 && (t.r - pose.r).norm() < 1e-12,
+                "{:?}",
+                c.q
+            );
+        }
+        assert!(sols
+            .as_slice()
+            .iter()
+            .any(|c| (0..6).all(|i| wrap(c.q[i] - q[i]).abs() < 1e-9)));
+    }
+
+    #[test]
+    fn ur5_wrist_singularity_takes_q4_from_free() {
+        let g = ur5();
+        let q = [0.3, -1.1, 1.4, -0.6, 0.0, 2.0];
+        let pose = g.fk(&q);
+        let sols = three_parallel_two_intersecting(&g, &pose, &q);
+        let hit = sols
+            .as_slice()
+            .iter()
+            .find(|c| (0..6).all(|i| wrap(c.q[i] - q[i]).abs() < 1e-9))
+            .expect("the generating configuration");
+        assert_eq!(hit.fit, Fit::Free);
+        // Any other value of the free joint is a solution too.
+        for free in [q, [0.0; 6]] {
+            let sols = three_parallel_two_intersecting(&g, &pose, &free);
+            assert!(!sols.as_slice().is_empty());
+            for c in sols.as_slice() {
+                let t = g.fk(&c.q);
+                assert!(
+                    (t.p - pose.p).norm() < 1e-12 && (t.r - pose.r).norm() < 1e-12,
+                    "{c:?}"
+                );
+            }
+        }
+    }
+}

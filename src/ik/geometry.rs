@@ -1,0 +1,192 @@
+//! A serial arm's zero-configuration geometry, the form the closed-form solvers read:
+//! joint `i` turns about (or slides along) the unit axis `h[i]` through the point `p[i]`,
+//! all in the base frame at `q = 0`, and the tool's pose at `q = 0` is `(r_tool, p_tool)`.
+//!
+//! With `R_i = rot(h[i], q[i])` (product of exponentials, IK-Geo's convention),
+//!
+//! ```text
+//! R(q) = R_1 ⋯ R_N · r_tool
+//! p(q) = p[0] + R_1 (p[1] − p[0]) + R_1 R_2 (p[2] − p[1]) + ⋯ + R_1 ⋯ R_N (p_tool − p[N−1])
+//! ```
+//!
+//! (a prismatic joint `i` adds `q[i] h[i]` after `R_1 ⋯ R_{i−1}`). Any point on an axis
+//! serves; the solvers move points onto axis intersections ([`closest_points`]).
+
+use crate::math::{abs, sin_cos, sqrt};
+use nalgebra::{Matrix3, Vector3};
+
+/// A 3-vector.
+pub type V3 = Vector3<f64>;
+/// A 3×3 matrix.
+pub type M3 = Matrix3<f64>;
+
+/// Zero-configuration geometry of an `N`-joint arm (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Geometry<const N: usize> {
+    /// Unit joint axes, base frame, `q = 0`.
+    pub h: [V3; N],
+    /// A point on each axis.
+    pub p: [V3; N],
+    /// `true` for a prismatic joint.
+    pub prismatic: [bool; N],
+    /// Tool orientation at `q = 0`.
+    pub r_tool: M3,
+    /// Tool position at `q = 0`.
+    pub p_tool: V3,
+}
+
+/// A target pose: rotation and position of the tool in the base frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Rotation.
+    pub r: M3,
+    /// Position.
+    pub p: V3,
+}
+
+impl Pose {
+    /// From a row-major homogeneous transform.
+    pub fn from_matrix(t: &[[f64; 4]; 4]) -> Pose {
+        Pose {
+            r: M3::from_fn(|i, j| t[i][j]),
+            p: V3::new(t[0][3], t[1][3], t[2][3]),
+        }
+    }
+
+    /// Whether every entry is finite.
+    pub fn is_finite(&self) -> bool {
+        self.r.iter().chain(self.p.iter()).all(|x| x.is_finite())
+    }
+}
+
+/// The rotation about the unit axis `k` whose angle has sine `s` and cosine `c`
+/// (Rodrigues: `c I + s [k]× + (1 − c) k kᵀ`).
+pub fn rot_sc(k: &V3, s: f64, c: f64) -> M3 {
+    let t = 1.0 - c;
+    let (x, y, z) = (k.x, k.y, k.z);
+    M3::new(
+        c + t * x * x,
+        t * x * y - s * z,
+        t * x * z + s * y,
+        t * x * y + s * z,
+        c + t * y * y,
+        t * y * z - s * x,
+        t * x * z - s * y,
+        t * y * z + s * x,
+        c + t * z * z,
+    )
+}
+
+/// The rotation by `theta` about the unit axis `k`.
+pub fn rot(k: &V3, theta: f64) -> M3 {
+    let (s, c) = sin_cos(theta);
+    rot_sc(k, s, c)
+}
+
+/// The points `a + s·u` and `b + t·v` closest to each other on two lines, or `None` when
+/// the lines are parallel (to `tol` in `|u × v|²`).
+pub fn closest_points(a: &V3, u: &V3, b: &V3, v: &V3, tol: f64) -> Option<(V3, V3)> {
+    let n = u.cross(v);
+    let nn = n.norm_squared();
+    if nn <= tol {
+        return None;
+    }
+    let d = b - a;
+    let s = d.cross(v).dot(&n) / nn;
+    let t = d.cross(u).dot(&n) / nn;
+    Some((a + u * s, b + v * t))
+}
+
+impl<const N: usize> Geometry<N> {
+    /// The tool pose at joint values `q` (for tests and checks; the generated `fk` is the
+    /// fast one).
+    pub fn fk(&self, q: &[f64; N]) -> Pose {
+        let mut r = M3::identity();
+        let mut p = self.p[0];
+        for (i, &qi) in q.iter().enumerate() {
+            let next = if i + 1 < N {
+                self.p[i + 1]
+            } else {
+                self.p_tool
+            };
+            if self.prismatic[i] {
+                p += r * self.h[i] * qi;
+            } else {
+                r *= rot(&self.h[i], qi);
+            }
+            p += r * (next - self.p[i]);
+        }
+        Pose {
+            r: r * self.r_tool,
+            p,
+        }
+    }
+
+    /// The `N − 1`-joint geometry with joint `k` locked at `q_k` (its motion folded into
+    /// the axes and points after it and into the tool). `M` must be `N − 1`.
+    pub fn lock<const M: usize>(&self, k: usize, q_k: f64) -> Geometry<M> {
+        debug_assert!(M + 1 == N && k < N);
+        let (r, shift) = if self.prismatic[k] {
+            (M3::identity(), self.h[k] * q_k)
+        } else {
+            (rot(&self.h[k], q_k), V3::zeros())
+        };
+        let pk = self.p[k];
+        let moved = |x: &V3| pk + r * (x - pk) + shift;
+        let mut g = Geometry {
+            h: [V3::zeros(); M],
+            p: [V3::zeros(); M],
+            prismatic: [false; M],
+            r_tool: r * self.r_tool,
+            p_tool: moved(&self.p_tool),
+        };
+        for (j, i) in (0..N).filter(|&i| i != k).enumerate() {
+            let after = i > k;
+            g.h[j] = if after { r * self.h[i] } else { self.h[i] };
+            g.p[j] = if after { moved(&self.p[i]) } else { self.p[i] };
+            g.prismatic[j] = self.prismatic[i];
+        }
+        g
+    }
+}
+
+/// `|x|` with a floor, for relative tolerances.
+pub(crate) fn scale(x: f64) -> f64 {
+    abs(x).max(1e-300)
+}
+
+/// `√max(x, 0)`.
+pub(crate) fn sqrt0(x: f64) -> f64 {
+    sqrt(x.max(0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rot_sc_is_rodrigues() {
+        let k = V3::new(1.0, 2.0, 2.0) / 3.0;
+        let r = rot(&k, 0.7);
+        assert!((r * k - k).norm() < 1e-15);
+        assert!((r.determinant() - 1.0).abs() < 1e-14);
+        let x = V3::new(0.3, -0.2, 0.5);
+        let expected =
+            x * 0.7f64.cos() + k.cross(&x) * 0.7f64.sin() + k * k.dot(&x) * (1.0 - 0.7f64.cos());
+        assert!((r * x - expected).norm() < 1e-15);
+    }
+
+    #[test]
+    fn closest_points_of_skew_and_parallel_lines() {
+        let (p, q) = closest_points(
+            &V3::zeros(),
+            &V3::x(),
+            &V3::new(0.0, 1.0, 2.0),
+            &V3::z(),
+            1e-20,
+        )
+        .unwrap();
+        assert!((p - V3::zeros()).norm() < 1e-15 && (q - V3::new(0.0, 1.0, 0.0)).norm() < 1e-15);
+        assert!(closest_points(&V3::zeros(), &V3::x(), &V3::y(), &V3::x(), 1e-20).is_none());
+    }
+}

@@ -1,0 +1,328 @@
+//! The geometric subproblems closed-form IK is built from (Paden–Kahan 1–3, Elias–Wen 4),
+//! each with its geometric statement, least-squares behaviour and degenerate cases.
+//!
+//! Every axis `k` is a unit vector. Angles come back as radians; a result says whether it
+//! is exact, least squares (the data admit no exact solution, so the nearest is given),
+//! or free (the data leave the angle undetermined — a singular configuration — and the
+//! caller's `free` value is used). A discriminant within [`ROOT_MERGE`] rounding errors of
+//! zero — the error estimated from the size of the terms it was computed from — is a
+//! double root: that is what an exactly singular pose computed in floating point looks
+//! like, and splitting it into two roots `±1e-8` apart would make the angles after it
+//! meaningless.
+
+use super::geometry::{scale, sqrt0, V3};
+use crate::math::atan2;
+
+/// A discriminant smaller than this many times its estimated rounding error
+/// (`ε · terms`) is zero: the two roots are one double root.
+pub const ROOT_MERGE: f64 = 64.0;
+
+/// Machine epsilon.
+const EPS: f64 = f64::EPSILON;
+
+/// A discriminant below this fraction of `r²` is also a double root: roots closer than
+/// `2√1e-11 ≈ 6e-6` rad. Errors upstream (the angles a subproblem's data came from)
+/// blur a double root more than its own terms' rounding; taking the two roots as one
+/// moves the solution by at most ~3e-6 rad along a direction where the equation is
+/// flat to second order (≤ 1e-11 relative), and the branch is checked against `fk`
+/// afterwards anyway (its fit is `Double`).
+const MERGE_RELATIVE: f64 = 1e-11;
+
+/// Relative size (squared) of a vector's component off an axis below which the vector is
+/// taken to lie on the axis: the rotation about that axis leaves it where it is.
+pub const ON_AXIS: f64 = 1e-18;
+
+/// How a subproblem's solution relates to the data.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fit {
+    /// Solves the equations (to rounding).
+    Exact,
+    /// The nearest solution: the equations have none.
+    LeastSquares,
+    /// A double root (two solutions that met): exact, at a singular configuration.
+    Double,
+    /// The angle is free (any value solves it): the caller's value was used.
+    Free,
+}
+
+impl Fit {
+    /// The weaker of two fits (least squares dominates, then free, then double).
+    pub fn and(self, other: Fit) -> Fit {
+        let rank = |f: Fit| match f {
+            Fit::Exact => 0,
+            Fit::Double => 1,
+            Fit::Free => 2,
+            Fit::LeastSquares => 3,
+        };
+        if rank(other) > rank(self) {
+            other
+        } else {
+            self
+        }
+    }
+}
+
+/// Up to two angles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Roots {
+    /// The angles; `theta[..n]` are used.
+    pub theta: [f64; 2],
+    /// How many (1 or 2).
+    pub n: usize,
+    /// How they fit.
+    pub fit: Fit,
+}
+
+impl Roots {
+    fn one(theta: f64, fit: Fit) -> Roots {
+        Roots {
+            theta: [theta, theta],
+            n: 1,
+            fit,
+        }
+    }
+
+    /// The angles.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.theta[..self.n]
+    }
+}
+
+/// `p − (k·p) k`: the part of `p` off the axis `k`.
+fn off_axis(k: &V3, p: &V3) -> V3 {
+    p - k * k.dot(p)
+}
+
+/// **SP1** — `θ` with `rot(k, θ) p1 = p2`: the angle that turns `p1` onto `p2` about `k`.
+///
+/// Least squares (`‖rot(k, θ) p1 − p2‖` minimised) when the two differ in length or in
+/// their component along `k`; free (`free` returned) when `p1` or `p2` lies on the axis.
+pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
+    let (a, b) = (off_axis(k, p1), off_axis(k, p2));
+    let (na, nb) = (a.norm_squared(), b.norm_squared());
+    let s1 = scale(p1.norm_squared());
+    let s2 = scale(p2.norm_squared());
+    if na <= ON_AXIS * s1 || nb <= ON_AXIS * s2 {
+        return (free, Fit::Free);
+    }
+    let theta = atan2(k.dot(&a.cross(&b)), a.dot(&b));
+    let same = (na - nb).abs() <= 1e-9 * (na + nb)
+        && (k.dot(p1) - k.dot(p2)).abs() <= 1e-9 * (s1 + s2).sqrt();
+    (theta, if same { Fit::Exact } else { Fit::LeastSquares })
+}
+
+/// `θ = φ ± atan2(√(r² − b²), b)` for `a cos θ + a' sin θ = b` written as
+/// `r cos(θ − φ) = b`: two roots, a double root, or the least-squares `φ` / `φ + π`.
+/// `mag2` is the squared size of the data (`‖h‖²‖p‖²`): `r` is zero relative to it;
+/// `terms` the size of the terms `b` was computed from (its rounding error is `ε terms`).
+fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> Roots {
+    let rr = ca * ca + sa * sa;
+    if rr <= ON_AXIS * scale(mag2) {
+        // r = 0: every θ gives the same value; exact only if that is b.
+        let fit = if b * b <= 1e-18 * scale(mag2) {
+            Fit::Free
+        } else {
+            Fit::LeastSquares
+        };
+        return Roots::one(free, fit);
+    }
+    let phi = atan2(sa, ca);
+    let disc = rr - b * b;
+    let noise = EPS * (2.0 * rr.sqrt() * (terms + mag2.sqrt()) + rr);
+    if disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr) {
+        let theta = if b >= 0.0 {
+            phi
+        } else {
+            phi + core::f64::consts::PI
+        };
+        return Roots::one(wrap(theta), Fit::Double);
+    }
+    if disc < 0.0 {
+        let theta = if b >= 0.0 {
+            phi
+        } else {
+            phi + core::f64::consts::PI
+        };
+        return Roots::one(wrap(theta), Fit::LeastSquares);
+    }
+    let d = atan2(sqrt0(disc), b);
+    Roots {
+        theta: [wrap(phi + d), wrap(phi - d)],
+        n: 2,
+        fit: Fit::Exact,
+    }
+}
+
+/// **SP4** — `θ` with `hᵀ rot(k, θ) p = d`: where the circle of `p` about `k` crosses the
+/// plane `hᵀ x = d`. Two roots, a double root (the circle touches the plane), least
+/// squares (it misses the plane), or free (the circle lies in a plane `hᵀ x = d`).
+pub fn sp4(h: &V3, p: &V3, k: &V3, d: f64, free: f64) -> Roots {
+    sp4_terms(h, p, k, d, d.abs(), free)
+}
+
+/// SP4 where `d` was computed from terms of size `terms` (its rounding error).
+fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
+    // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
+    let pp = off_axis(k, p);
+    let ca = h.dot(&pp);
+    let sa = h.dot(&k.cross(p));
+    let b = d - h.dot(k) * k.dot(p);
+    let mag2 = h.norm_squared() * p.norm_squared();
+    cos_equation(ca, sa, b, terms, mag2, free)
+}
+
+/// **SP3** — `θ` with `‖rot(k, θ) p1 − p2‖ = d`: where the circle of `p1` about `k` meets
+/// the sphere of radius `d` about `p2`. Two roots, a double root, least squares (the
+/// nearest distance to `d`), or free (the circle is a point, or centred on the sphere's
+/// axis).
+pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
+    // ‖rot p1 − p2‖² = ‖p1‖² + ‖p2‖² − 2 p2ᵀ rot(k, θ) p1 = d²  ⇔  p2ᵀ rot p1 = (…)/2
+    let (n1, n2) = (p1.norm_squared(), p2.norm_squared());
+    let rhs = 0.5 * (n1 + n2 - d * d);
+    sp4_terms(p2, p1, k, rhs, 0.5 * (n1 + n2 + d * d), free)
+}
+
+/// **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
+/// about `k1` and of `p2` about `k2` meet (`k1 ∦ k2`). Up to two pairs; a double root when
+/// the circles touch; least squares when they miss (or `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free
+/// (the caller's value) when its vector lies on its axis.
+pub fn sp2(p1: &V3, p2: &V3, k1: &V3, k2: &V3, free: (f64, f64)) -> ([(f64, f64); 2], usize, Fit) {
+    // The meeting point z = α k1 + β k2 + γ (k1 × k2): kᵢ·z = kᵢ·pᵢ, ‖z‖ = ‖p1‖.
+    let c12 = k1.dot(k2);
+    let n = k1.cross(k2);
+    let nn = n.norm_squared();
+    let (a1, a2) = (k1.dot(p1), k2.dot(p2));
+    let alpha = (a1 - c12 * a2) / nn;
+    let beta = (a2 - c12 * a1) / nn;
+    let r1 = p1.norm_squared();
+    let r2 = p2.norm_squared();
+    let mut fit = if (r1 - r2).abs() <= 1e-9 * (r1 + r2) {
+        Fit::Exact
+    } else {
+        Fit::LeastSquares
+    };
+    let rr = 0.5 * (r1 + r2);
+    let g2 = (rr - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12) / nn;
+    let base = k1 * alpha + k2 * beta;
+    let terms = rr + alpha * alpha + beta * beta + 2.0 * (alpha * beta * c12).abs();
+    let zs: ([V3; 2], usize) = if g2.abs() <= ROOT_MERGE * EPS * terms / nn {
+        fit = fit.and(Fit::Double);
+        ([base, base], 1)
+    } else if g2 < 0.0 {
+        fit = Fit::LeastSquares;
+        ([base, base], 1)
+    } else {
+        let g = n * sqrt0(g2);
+        ([base + g, base - g], 2)
+    };
+    let mut out = [(0.0, 0.0); 2];
+    for (o, z) in out.iter_mut().zip(zs.0.iter()).take(zs.1) {
+        let (t1, f1) = sp1(p1, z, k1, free.0);
+        let (t2, f2) = sp1(p2, z, k2, free.1);
+        *o = (t1, t2);
+        fit = fit.and(mild(f1)).and(mild(f2));
+    }
+    (out, zs.1, fit)
+}
+
+/// A least-squares SP1 inside a larger subproblem only reflects the outer fit (already
+/// counted there); a free one is a singularity.
+fn mild(f: Fit) -> Fit {
+    match f {
+        Fit::LeastSquares => Fit::Exact,
+        f => f,
+    }
+}
+
+/// `θ` wrapped into `(−π, π]`.
+pub fn wrap(theta: f64) -> f64 {
+    use core::f64::consts::{PI, TAU};
+    let mut t = theta % TAU;
+    if t > PI {
+        t -= TAU;
+    } else if t <= -PI {
+        t += TAU;
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::geometry::rot;
+    use super::*;
+
+    fn unit(x: f64, y: f64, z: f64) -> V3 {
+        V3::new(x, y, z).normalize()
+    }
+
+    #[test]
+    fn sp1_turns_a_point_onto_another() {
+        let k = unit(0.2, -0.5, 1.0);
+        let p1 = V3::new(0.3, 0.4, -0.2);
+        let p2 = rot(&k, 1.1) * p1;
+        let (t, fit) = sp1(&p1, &p2, &k, 0.0);
+        assert_eq!(fit, Fit::Exact);
+        assert!((t - 1.1).abs() < 1e-14);
+        assert_eq!(sp1(&(k * 2.0), &p2, &k, 0.25), (0.25, Fit::Free));
+        let (_, fit) = sp1(&p1, &(p2 * 2.0), &k, 0.0);
+        assert_eq!(fit, Fit::LeastSquares);
+    }
+
+    #[test]
+    fn sp4_crosses_a_plane() {
+        let (h, k, p) = (
+            unit(1.0, 0.2, 0.3),
+            unit(0.0, 0.3, 1.0),
+            V3::new(0.5, -0.1, 0.2),
+        );
+        let d = h.dot(&(rot(&k, -2.0) * p));
+        let r = sp4(&h, &p, &k, d, 0.0);
+        assert_eq!((r.n, r.fit), (2, Fit::Exact));
+        assert!(r.as_slice().iter().any(|t| (t + 2.0).abs() < 1e-12));
+        for &t in r.as_slice() {
+            assert!((h.dot(&(rot(&k, t) * p)) - d).abs() < 1e-14);
+        }
+        // Out of range: the nearest, flagged.
+        let r = sp4(&h, &p, &k, 10.0, 0.0);
+        assert_eq!((r.n, r.fit), (1, Fit::LeastSquares));
+    }
+
+    #[test]
+    fn sp3_and_its_double_root() {
+        let k = V3::z();
+        let (p1, p2) = (V3::new(1.0, 0.0, 0.0), V3::new(3.0, 0.0, 0.0));
+        let r = sp3(&p1, &p2, &k, 2.5, 0.0);
+        assert_eq!(r.n, 2);
+        for &t in r.as_slice() {
+            assert!(((rot(&k, t) * p1 - p2).norm() - 2.5).abs() < 1e-14);
+        }
+        // Tangent: the circle touches the sphere at θ = π (distance 4).
+        let r = sp3(&p1, &p2, &k, 4.0, 0.0);
+        assert_eq!((r.n, r.fit), (1, Fit::Double));
+        assert!((r.theta[0].abs() - core::f64::consts::PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn sp2_meets_two_circles() {
+        let (k1, k2) = (unit(0.0, 0.0, 1.0), unit(0.3, 1.0, 0.0));
+        let p2 = V3::new(0.2, -0.4, 0.7);
+        let z = rot(&k2, 0.9) * p2;
+        let p1 = rot(&k1, -0.4) * z;
+        let (pairs, n, fit) = sp2(&p1, &p2, &k1, &k2, (0.0, 0.0));
+        assert_eq!((n, fit), (2, Fit::Exact));
+        for &(t1, t2) in &pairs[..n] {
+            assert!((rot(&k1, t1) * p1 - rot(&k2, t2) * p2).norm() < 1e-13);
+        }
+        assert!(pairs[..n]
+            .iter()
+            .any(|&(t1, t2)| (t1 - 0.4).abs() < 1e-12 && (t2 - 0.9).abs() < 1e-12));
+    }
+
+    #[test]
+    fn wrap_is_into_the_half_open_turn() {
+        use core::f64::consts::PI;
+        assert_eq!(wrap(PI), PI);
+        assert!((wrap(-PI) - PI).abs() < 1e-15);
+        assert!((wrap(7.0) - (7.0 - 2.0 * PI)).abs() < 1e-15);
+    }
+}

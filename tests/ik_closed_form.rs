@@ -1,0 +1,286 @@
+//! IKFast's self-test on every robot of `robots/` that has a closed-form IK family:
+//! random configurations (fixed seeds) with 20 % of the joints snapped to −π/2, 0 or
+//! π/2, their pose from the generated `fk`, then the generated `ik`:
+//!
+//! - every exact solution's `fk` equals the pose (max entry error ≤ 1e-10);
+//! - away from singularities the generating configuration is among the solutions
+//!   (modulo 2π), in every case;
+//! - at singular poses there is an exact solution, the branch is flagged singular, and
+//!   `ik_near(pose, q)` with the generating `q` returns `q`;
+//! - no two solutions are the same configuration.
+
+use core::f64::consts::{FRAC_PI_2, PI, TAU};
+use kinegen::ik::{IkSolutions, XorShift64};
+use kinegen_robots::*;
+
+/// Configurations per robot.
+const CASES: usize = 10_000;
+
+/// A generating configuration is singular when a singular factor (or the determinant)
+/// is this small: exactly singular configurations give rounding-level values (~1e-16),
+/// random ones are orders of magnitude away; near-singular ones count as regular, so
+/// their generating configuration must be found too.
+const SINGULAR: f64 = 1e-12;
+
+/// `max |a − b|` over the top three rows.
+fn pose_error(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> f64 {
+    let mut e: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..4 {
+            e = e.max((a[i][j] - b[i][j]).abs());
+        }
+    }
+    e
+}
+
+/// Joint difference, whole turns removed for revolute joints.
+fn joint_gap<const N: usize>(a: &[f64; N], b: &[f64; N], revolute: &[bool; N]) -> f64 {
+    (0..N)
+        .map(|i| {
+            let d = a[i] - b[i];
+            if revolute[i] {
+                (d - TAU * (d / TAU).round()).abs()
+            } else {
+                d.abs()
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A configuration within `limits` (±π where a revolute joint has none) with 20 % of the
+/// revolute joints snapped to −π/2, 0 or π/2.
+fn configuration<const N: usize>(
+    rng: &mut XorShift64,
+    limits: &[[f64; 2]; N],
+    revolute: &[bool; N],
+) -> [f64; N] {
+    let mut q = [0.0; N];
+    for i in 0..N {
+        let [lo, hi] = limits[i];
+        let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (-PI, PI) };
+        q[i] = lo + (hi - lo) * rng.next_f64();
+        if revolute[i] && rng.next_f64() < 0.2 {
+            let snap = [-FRAC_PI_2, 0.0, FRAC_PI_2][(rng.next_u64() % 3) as usize];
+            if snap >= lo && snap <= hi {
+                q[i] = snap;
+            }
+        }
+    }
+    q
+}
+
+/// What one robot's run found.
+#[derive(Debug, Default)]
+struct Tally {
+    cases: usize,
+    singular: usize,
+    solutions: usize,
+}
+
+/// Checks one pose; `singular` says whether the generating configuration is singular,
+/// `named` whether the robot has `SINGULARITIES` its branches must name.
+#[allow(clippy::too_many_arguments)]
+fn check<const N: usize, const K: usize>(
+    name: &str,
+    q: &[f64; N],
+    pose: &[[f64; 4]; 4],
+    sols: &IkSolutions<N, K>,
+    near: Option<[f64; N]>,
+    singular: bool,
+    named: bool,
+    revolute: &[bool; N],
+    fk: impl Fn(&[f64; N]) -> [[f64; 4]; 4],
+    pose_gap: impl Fn(&[[f64; 4]; 4], &[[f64; 4]; 4]) -> f64,
+) {
+    for b in sols.exact() {
+        let e = pose_gap(&fk(&b.q), pose);
+        assert!(
+            e <= 1e-10,
+            "{name}: exact solution {:?} of q = {q:?} is {e:e} off",
+            b.q
+        );
+    }
+    for (i, a) in sols.iter().enumerate() {
+        for b in &sols.as_slice()[i + 1..] {
+            assert!(
+                joint_gap(&a.q, &b.q, revolute) > 1e-9,
+                "{name}: duplicate solutions for {q:?}"
+            );
+        }
+    }
+    let found = sols.exact().any(|b| joint_gap(&b.q, q, revolute) <= 1e-7);
+    if !singular {
+        assert!(
+            found,
+            "{name}: q = {q:?} is not among its {} solutions {:?}",
+            sols.len(),
+            sols.as_slice()
+        );
+        return;
+    }
+    assert!(
+        sols.exact().next().is_some(),
+        "{name}: singular q = {q:?} has no exact solution"
+    );
+    assert!(
+        sols.iter()
+            .any(|b| b.at_singularity && (b.singular != 0 || !named)),
+        "{name}: no branch of singular q = {q:?} is flagged: {:?}",
+        sols.as_slice()
+    );
+    let near = near.unwrap_or_else(|| panic!("{name}: ik_near found nothing for singular {q:?}"));
+    let gap = joint_gap(&near, q, revolute);
+    assert!(
+        gap <= 1e-7,
+        "{name}: ik_near({q:?}) = {near:?} ({gap:e} away)"
+    );
+}
+
+macro_rules! self_test {
+    ($test:ident, $ty:ty, $seed:expr) => {
+        #[test]
+        fn $test() {
+            let robot = <$ty>::default();
+            let mut rng = XorShift64::new($seed);
+            let mut tally = Tally::default();
+            for _ in 0..CASES {
+                let q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
+                let pose = robot.fk(&q);
+                let singular = robot
+                    .singular_factors(&q)
+                    .iter()
+                    .any(|f| f.abs() <= SINGULAR);
+                let sols = robot.ik(&pose);
+                let near = robot.ik_near(&pose, &q);
+                check(
+                    stringify!($ty),
+                    &q,
+                    &pose,
+                    &sols,
+                    near,
+                    singular,
+                    true,
+                    &<$ty>::REVOLUTE,
+                    |x| robot.fk(x),
+                    pose_error,
+                );
+                tally.cases += 1;
+                tally.singular += usize::from(singular);
+                tally.solutions += sols.exact().count();
+            }
+            eprintln!("{}: {tally:?}", stringify!($ty));
+        }
+    };
+}
+
+self_test!(ur3, Ur3, 3);
+self_test!(ur5, Ur5, 5);
+self_test!(ur10, Ur10, 10);
+self_test!(ur5e, Ur5e, 55);
+self_test!(ur5_from_urdf, Ur5Urdf, 505);
+self_test!(ur10e, Ur10e, 1010);
+self_test!(puma560, Puma560, 560);
+self_test!(stanford, Stanford, 1969);
+self_test!(kuka_kr6_r900, KukaKr6R900, 6900);
+self_test!(abb_irb120, AbbIrb120, 120);
+self_test!(abb_irb140, AbbIrb140, 140);
+
+/// Task-row error of a planar arm: `x`, `y` (and `z`, the angle about z) as `rows` says.
+fn task_gap(rows: &'static [usize]) -> impl Fn(&[[f64; 4]; 4], &[[f64; 4]; 4]) -> f64 {
+    move |a, b| {
+        let angle = |t: &[[f64; 4]; 4]| t[1][0].atan2(t[0][0]);
+        rows.iter()
+            .map(|&r| match r {
+                0..=2 => (a[r][3] - b[r][3]).abs(),
+                _ => {
+                    let d = angle(a) - angle(b);
+                    (d - TAU * (d / TAU).round()).abs()
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+macro_rules! planar_self_test {
+    ($test:ident, $ty:ty, $seed:expr) => {
+        #[test]
+        fn $test() {
+            use kinegen::TaskKinematics;
+            let robot = <$ty>::default();
+            let mut rng = XorShift64::new($seed);
+            let rows: &'static [usize] =
+                &<$ty as TaskKinematics<{ <$ty>::DOF }, { <$ty>::DOF }>>::TASK_ROWS;
+            let mut tally = Tally::default();
+            for _ in 0..CASES {
+                let q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
+                let pose = robot.fk(&q);
+                let singular = robot
+                    .singular_factors(&q)
+                    .iter()
+                    .any(|f| f.abs() <= SINGULAR);
+                let sols = robot.ik(&pose);
+                let near = robot.ik_near(&pose, &q);
+                check(
+                    stringify!($ty),
+                    &q,
+                    &pose,
+                    &sols,
+                    near,
+                    singular,
+                    true,
+                    &<$ty>::REVOLUTE,
+                    |x| robot.fk(x),
+                    task_gap(rows),
+                );
+                tally.cases += 1;
+                tally.singular += usize::from(singular);
+                tally.solutions += sols.exact().count();
+            }
+            eprintln!("{}: {tally:?}", stringify!($ty));
+        }
+    };
+}
+
+planar_self_test!(planar_rr, PlanarRr, 22);
+planar_self_test!(planar_rrr, PlanarRrr, 333);
+planar_self_test!(scara, Scara, 600);
+
+/// The iiwa with joint 3 locked at its generating value: the 6 others in closed form.
+#[test]
+fn kuka_iiwa14_with_joint_3_locked() {
+    let robot = KukaIiwa14::default();
+    let mut rng = XorShift64::new(14);
+    let mut tally = Tally::default();
+    for _ in 0..CASES {
+        let q = configuration(&mut rng, &KukaIiwa14::LIMITS, &KukaIiwa14::REVOLUTE);
+        let pose = robot.fk(&q);
+        // Singular for the locked arm: its 6×6 Jacobian (joint 3's column removed).
+        let j = robot.jacobian(&q);
+        let mut m = [[0.0; 6]; 6];
+        for r in 0..6 {
+            for (c, k) in [0, 1, 3, 4, 5, 6].into_iter().enumerate() {
+                m[r][c] = j[r][k];
+            }
+        }
+        let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+        let sols = robot.ik_with(&pose, q[2]);
+        let near = robot.ik_near(&pose, &q);
+        check(
+            "KukaIiwa14",
+            &q,
+            &pose,
+            &sols,
+            near,
+            singular,
+            false,
+            &KukaIiwa14::REVOLUTE,
+            |x| robot.fk(x),
+            pose_error,
+        );
+        assert!(sols.iter().all(|b| b.q[2] == q[2]), "joint 3 stays locked");
+        tally.cases += 1;
+        tally.singular += usize::from(singular);
+        tally.solutions += sols.exact().count();
+    }
+    eprintln!("KukaIiwa14 (joint 3 locked): {tally:?}");
+}
