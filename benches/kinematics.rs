@@ -383,22 +383,5 @@ fn paired_table() {
 }
 
 fn main() {
-    let start = SystemTime::now();
-    // `KINEGEN_BENCH_PAIRED=1 cargo bench --bench kinematics`: the interleaved ratios
-    // only (half a minute).
-    if std::env::var_os("KINEGEN_BENCH_PAIRED").is_some() {
-        paired_table();
-        return;
-    }
-    benches();
-    Criterion::default().configure_from_args().final_summary();
-    // `cargo test --benches` runs each benchmark once without `--bench`: no tables then,
-    // and no interleaved ratios when a filter picked some benchmarks only.
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.iter().any(|a| a == "--bench") {
-        summary(start);
-        if args.iter().all(|a| a.starts_with("--")) {
-            paired_table();
-        }
-    }
+    common::bench_main(benches, summary, paired_table);
 }

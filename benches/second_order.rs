@@ -217,20 +217,7 @@ fn paired_table() {
     paired_row("panda", &Panda::default(), "panda.toml");
 }
 
+// `KINEGEN_BENCH_PAIRED=1 cargo bench --bench second_order`: the interleaved ratios only.
 fn main() {
-    let start = SystemTime::now();
-    // `KINEGEN_BENCH_PAIRED=1 cargo bench --bench second_order`: the interleaved ratios only.
-    if std::env::var_os("KINEGEN_BENCH_PAIRED").is_some() {
-        paired_table();
-        return;
-    }
-    benches();
-    Criterion::default().configure_from_args().final_summary();
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.iter().any(|a| a == "--bench") {
-        summary(start);
-        if args.iter().all(|a| a.starts_with("--")) {
-            paired_table();
-        }
-    }
+    common::bench_main(benches, summary, paired_table);
 }

@@ -266,3 +266,27 @@ pub fn paired<const N: usize, R, S>(
     ratios.sort_by(f64::total_cmp);
     ratios[ratios.len() / 2]
 }
+
+/// A bench's `main`: with `KINEGEN_BENCH_PAIRED` set only the interleaved ratios
+/// (`paired_table`); else the criterion `benches`, and after a real `--bench` run the
+/// tables of this run's medians (`summary`) and, when no filter picked some benchmarks
+/// only, the interleaved ratios. (`cargo test --benches` runs each benchmark once without
+/// `--bench`: no tables then.)
+pub fn bench_main(benches: fn(), summary: fn(SystemTime), paired_table: fn()) {
+    let start = SystemTime::now();
+    if std::env::var_os("KINEGEN_BENCH_PAIRED").is_some() {
+        paired_table();
+        return;
+    }
+    benches();
+    criterion::Criterion::default()
+        .configure_from_args()
+        .final_summary();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|a| a == "--bench") {
+        summary(start);
+        if args.iter().all(|a| a.starts_with("--")) {
+            paired_table();
+        }
+    }
+}
