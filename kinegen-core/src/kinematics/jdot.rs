@@ -98,7 +98,7 @@ pub fn jdot_qdot(g: &mut Graph, cols: &[Column], qd: &[Id]) -> Column {
 }
 
 /// `J̇ q̇` formed from the columns `local` of the Jacobian in a middle frame (see
-/// [`LocalColumns::all`]) and rotated out once by that frame's rotation: the same vector
+/// [`crate::kinematics::jacobian::LocalColumns::all`]) and rotated out once by that frame's rotation: the same vector
 /// as [`jdot_qdot`] of the world columns, since cross products commute with rotations.
 pub fn jdot_qdot_in(g: &mut Graph, local: &[Column], frame: &Transform, qd: &[Id]) -> Column {
     let a = jdot_qdot(g, local, qd);
