@@ -1,9 +1,10 @@
 //! # kinegen
 //!
 //! Closed-form robot kinematics generated at compile time from a Denavit–Hartenberg
-//! table: forward kinematics, the geometric Jacobian and its determinant as
+//! table: forward kinematics, the geometric Jacobian and its determinant, the kinematic
+//! Hessian, `J̇ q̇` and the gradients of det J and of the manipulability as
 //! allocation-free, `no_std` Rust, plus a runtime that does what the textbooks do with
-//! a Jacobian.
+//! them.
 //!
 //! ```
 //! kinegen::kinematics! {
@@ -38,7 +39,9 @@
 //! that way. Every generated function's rustdoc shows its closed form. The runtime
 //! modules work on any [`Kinematics`] robot: [`velocity`] (inverse velocity,
 //! pseudo-inverses, damped least squares), [`forces`], [`manipulability`], [`ik`],
-//! [`control`], [`trajectory`]; [`math`] is what the generated code calls.
+//! [`control`], [`trajectory`], and on the generated second order
+//! ([`SecondOrderKinematics`]) [`acceleration`] (resolved-acceleration control) and
+//! [`redundancy`] (gradient projection); [`math`] is what the generated code calls.
 #![no_std]
 #![warn(missing_docs)]
 
@@ -50,6 +53,7 @@ extern crate self as kinegen;
 
 pub use kinegen_macro::kinematics;
 
+pub mod acceleration;
 pub mod adapters;
 pub mod analytic;
 pub mod control;
@@ -60,6 +64,7 @@ pub mod linalg;
 pub mod manipulability;
 pub mod math;
 pub mod pose_error;
+pub mod redundancy;
 pub mod velocity;
 
 pub use error::SolveError;
@@ -102,6 +107,36 @@ pub trait Kinematics<const N: usize> {
     }
 }
 
+/// Second-order kinematics of a robot whose kinematics kinegen generated, in closed form:
+/// the kinematic Hessian, the time derivative of the Jacobian and the bias acceleration
+/// `J̇ q̇`, and the gradients a controller climbs away from singularities. Every method is
+/// generated (there are no defaults); rows and frames as in [`Kinematics`].
+pub trait SecondOrderKinematics<const N: usize>: Kinematics<N> {
+    /// `H[j] = ∂J/∂q_j` of the world-frame Jacobian for every joint `j`, indexed
+    /// `H[j][row][column]` (the Robotics Toolbox's `hessian0` layout).
+    fn hessian(&self, q: &[f64; N]) -> [[[f64; N]; 6]; N];
+
+    /// `J̇ = Σ_j H[j] q̇_j`, world frame, along the joint rates `qd`.
+    fn jacobian_dot(&self, q: &[f64; N], qd: &[f64; N]) -> [[f64; N]; 6];
+
+    /// The bias acceleration `J̇ q̇` (world frame): the tool point's linear and the tool
+    /// frame's angular acceleration when `q̈ = 0`, so that `ẍ = J q̈ + J̇ q̇`.
+    fn jdot_qdot(&self, q: &[f64; N], qd: &[f64; N]) -> [f64; 6];
+
+    /// `d/dt` of [`Kinematics::jacobian_ee`] (not `Rᵀ J̇`, which leaves out the rotation of
+    /// the tool frame itself).
+    fn jacobian_ee_dot(&self, q: &[f64; N], qd: &[f64; N]) -> [[f64; N]; 6];
+
+    /// The gradient of Yoshikawa's manipulability of the world-frame Jacobian
+    /// ([`manipulability::manipulability_gradient`]; 0 at a singular configuration).
+    fn manipulability_gradient(&self, q: &[f64; N]) -> [f64; N];
+
+    /// The gradient of [`Kinematics::jacobian_det`], by exact differentiation of its
+    /// factored closed form (`None` where that is `None`, and where det J has no closed
+    /// form and is computed by LU).
+    fn det_gradient(&self, q: &[f64; N]) -> Option<[f64; N]>;
+}
+
 /// A robot with a reduced (task) Jacobian of `M` rows, e.g. `[x, y, rz]` for a planar arm.
 pub trait TaskKinematics<const N: usize, const M: usize>: Kinematics<N> {
     /// Which rows of the full Jacobian, as indices into `[vx, vy, vz, ωx, ωy, ωz]`.
@@ -120,9 +155,12 @@ pub trait TaskKinematics<const N: usize, const M: usize>: Kinematics<N> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Formula {
     /// The generated function it belongs to (`"fk"`, `"jacobian"`, `"task_jacobian"`,
-    /// `"jacobian_det"`, `"singular_factors"`); intermediate names are per function.
+    /// `"jacobian_det"`, `"singular_factors"`, `"hessian"`, `"jacobian_dot"`,
+    /// `"jdot_qdot"`, `"jacobian_ee_dot"`, `"det_gradient"`,
+    /// `"singular_factor_gradients"`); intermediate names are per function.
     pub function: &'static str,
-    /// What it is (`"T[0][3]"`, `"J[2][1]"`, `"det"`, `"t4"` for a shared intermediate).
+    /// What it is (`"T[0][3]"`, `"J[2][1]"`, `"det"`, `"H[1][0][2]"`, `"Jdot_qdot[4]"`,
+    /// `"ddet[2]"`, `"df[0][1]"`, `"t4"` for a shared intermediate).
     pub name: &'static str,
     /// Plain text, Rust syntax (`a2 * c2 + a3 * c23`).
     pub text: &'static str,

@@ -1,15 +1,17 @@
 //! The runtime never allocates: a counting global allocator (in its own test binary, one
 //! test, counting only this thread) sees zero allocations across inverse velocity
-//! kinematics, pseudo-inverses, DLS, manipulability, IK (single and multi-start) and
-//! control steps.
+//! kinematics, pseudo-inverses, DLS, manipulability and its gradient, IK (single and
+//! multi-start), control steps, resolved-acceleration control and gradient projection.
 
 mod common;
 
 use common::*;
+use kinegen::acceleration::{resolved_acceleration, resolved_acceleration_step, Gains, Reference};
 use kinegen::adapters::{fk_isometry, jacobian_matrix};
 use kinegen::control::{cartesian_p_step_pose, cartesian_p_step_task};
 use kinegen::ik::{solve, solve_nearest, IkMethod, IkOptions, IkTarget, MultiStart};
-use kinegen::manipulability::measures;
+use kinegen::manipulability::{manipulability_gradient, measures};
+use kinegen::redundancy::{gradient_projection, Projection};
 use kinegen::trajectory::{CartesianLine, ThroughVias};
 use kinegen::velocity::*;
 use nalgebra::{SVector, Vector3};
@@ -144,6 +146,26 @@ fn runtime_does_not_allocate() {
             .unwrap()
             .all(|s| s.is_ok());
         fine &= ThroughVias::with_limits([0.0, 1.0, 3.0, 2.0], 1.0, 2.0).is_ok();
+        // Second order: resolved acceleration (and tracking), gradient projection, the
+        // manipulability gradient's SVD.
+        let xdd = SVector::<f64, 6>::new(0.1, 0.0, -0.2, 0.0, 0.3, 0.0);
+        fine &= resolved_acceleration(&ur5, &q, &[0.2; 6], &xdd, &Damping::default()).is_ok();
+        let reference = Reference {
+            pose: b,
+            twist: SVector::zeros(),
+            acceleration: SVector::zeros(),
+        };
+        fine &= resolved_acceleration_step(
+            &ur5,
+            &q,
+            &[0.1; 6],
+            &reference,
+            &Gains::critical(5.0),
+            &Damping::default(),
+        )
+        .is_ok();
+        fine &= gradient_projection(&panda, &q7, &xdot, &Projection::default()).is_ok();
+        fine &= manipulability_gradient(&ur5.jacobian(&q), &ur5.hessian(&q)).is_ok();
         fine
     });
     assert!(ok, "some call did not give the expected result");

@@ -4,8 +4,8 @@
 //!
 //! Whatever the front end accepts must generate code without an internal error, and the
 //! engine's model (what the code computes, evaluated node by node) must equal the numeric
-//! reference of `kinegen_core::numeric`: FK, both Jacobians and the closed-form
-//! determinant when there is one. Any difference panics.
+//! reference of `kinegen_core::numeric`: FK, both Jacobians, the closed-form determinant
+//! when there is one, the Hessian and `J̇ q̇`. Any difference panics.
 
 use kinegen_core::numeric::{self, NumericRobot};
 use kinegen_core::{derive, front::toml_file, generate, Derived, ItemHeader, Options, Robot};
@@ -70,7 +70,9 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
         return Outcome::Generated; // rounding would swamp any tolerance
     }
     let chain = robot.chain();
-    let Derived { model, det, .. } = derive(&chain, options);
+    let Derived {
+        model, det, second, ..
+    } = derive(&chain, options);
     let det = det.and_then(Result::ok);
     let n = robot.dof();
     let q: Vec<f64> = (0..n)
@@ -132,6 +134,34 @@ pub fn robot_outcome(robot: &Robot, options: &Options, q_seed: &[f64]) -> Outcom
                 );
             }
         }
+    }
+    // Second order: the Hessian against the reference's cross products, J̇q̇ against its
+    // acceleration propagation (rates of order one, so q̇² adds no scale).
+    let h = num.hessian(&q).unwrap();
+    for (k, hk) in second.hessian.iter().enumerate() {
+        let ids: Vec<_> = hk.iter().flatten().copied().collect();
+        let got = model.eval(&chain, &q, &ids);
+        for r in 0..6 {
+            for c in 0..n {
+                let want = h[k][(r, c)];
+                assert!(
+                    (got[r * n + c] - want).abs() <= tol(want),
+                    "H[{k}][{r}][{c}] at q = {q:?}: engine {} vs numeric {want}",
+                    got[r * n + c]
+                );
+            }
+        }
+    }
+    let qd: Vec<f64> = (0..n).map(|i| 0.7 - 0.3 * i as f64).collect();
+    let want = num.jdot_qdot_propagation(&q, &qd).unwrap();
+    let got = model.eval_with_rates(&chain, &q, Some(&qd), &second.jdot_qdot);
+    for r in 0..6 {
+        assert!(
+            (got[r] - want[r]).abs() <= tol(want[r]),
+            "J̇q̇[{r}] at q = {q:?}, qd = {qd:?}: engine {} vs numeric {}",
+            got[r],
+            want[r]
+        );
     }
     if let Some(d) = &det {
         // The rows the determinant is of (the task rows, or all six for a 6-joint arm).

@@ -8,7 +8,8 @@ use std::fmt::Write;
 
 use kinegen_core::algebra::graph::Id;
 use kinegen_core::kinematics::model::Model;
-use kinegen_core::Chain;
+use kinegen_core::{Chain, Derived};
+use nalgebra::DMatrix;
 use serde_json::{json, Value};
 
 use crate::det_hook::Determinants;
@@ -16,6 +17,12 @@ use crate::error::CliError;
 
 /// Parse `--q 0.1,0.2,…`: exactly one finite number per joint.
 pub fn parse_q(text: &str, dof: usize) -> Result<Vec<f64>, CliError> {
+    parse_joint_values(text, dof, "--q")
+}
+
+/// Parse a joint vector given to `flag` (`--q`, `--qd`): exactly one finite number per
+/// joint.
+pub fn parse_joint_values(text: &str, dof: usize, flag: &str) -> Result<Vec<f64>, CliError> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     let mut q = Vec::with_capacity(parts.len());
     for (i, p) in parts.iter().enumerate() {
@@ -23,13 +30,13 @@ pub fn parse_q(text: &str, dof: usize) -> Result<Vec<f64>, CliError> {
             Ok(x) if x.is_finite() => q.push(x),
             Ok(_) => {
                 return Err(CliError::Usage(format!(
-                    "--q: joint value {} `{p}` is not a finite number",
+                    "{flag}: joint value {} `{p}` is not a finite number",
                     i + 1
                 )))
             }
             Err(_) => {
                 return Err(CliError::Usage(format!(
-                    "--q: joint value {} `{p}` is not a number",
+                    "{flag}: joint value {} `{p}` is not a number",
                     i + 1
                 )))
             }
@@ -37,7 +44,7 @@ pub fn parse_q(text: &str, dof: usize) -> Result<Vec<f64>, CliError> {
     }
     if q.len() != dof {
         return Err(CliError::Usage(format!(
-            "--q: the robot has {dof} joints but {} joint values were given",
+            "{flag}: the robot has {dof} joints but {} joint values were given",
             q.len()
         )));
     }
@@ -68,6 +75,26 @@ pub struct Values {
     pub manipulability_trans: f64,
     /// Of the angular rows `[ωx ωy ωz]` (`axes="rot"`).
     pub manipulability_rot: f64,
+    /// The second-order values.
+    pub second: SecondOrderValues,
+}
+
+/// What `eval` reports of the second-order outputs.
+#[derive(Clone, Debug)]
+pub struct SecondOrderValues {
+    /// `H[j][row][col] = ∂J[row][col]/∂q_j`, N×6×N.
+    pub hessian: Vec<Vec<Vec<f64>>>,
+    /// `J̇` (6×N), with `--qd`.
+    pub jacobian_dot: Option<Vec<Vec<f64>>>,
+    /// `J̇ q̇` (6), with `--qd`.
+    pub jdot_qdot: Option<Vec<f64>>,
+    /// `∂det/∂q` where the engine has the closed-form determinant.
+    pub det_gradient: Option<Vec<f64>>,
+    /// `∂m/∂q` of [`Values::manipulability`] (the full 6×N Jacobian; 0 for N < 6, where
+    /// that is identically 0).
+    pub manipulability_gradient: Vec<f64>,
+    /// `∂m/∂q` of [`Values::manipulability_task`], with task rows.
+    pub manipulability_task_gradient: Option<Vec<f64>>,
 }
 
 /// Yoshikawa's manipulability of the given rows (see [`kinegen_core::numeric::manipulability`]).
@@ -80,8 +107,16 @@ fn rows(model: &Model, chain: &Chain, q: &[f64], rows: &[Vec<Id>]) -> Vec<Vec<f6
     rows.iter().map(|r| model.eval(chain, q, r)).collect()
 }
 
-/// Evaluate every output at `q` (length already checked).
-pub fn values(chain: &Chain, model: &Model, dets: &Determinants, q: &[f64]) -> Values {
+/// Evaluate every output at `q` and, where given, the joint rates `qd` (lengths
+/// already checked).
+pub fn values(
+    chain: &Chain,
+    derived: &Derived,
+    dets: &Determinants,
+    q: &[f64],
+    qd: Option<&[f64]>,
+) -> Values {
+    let model = &derived.model;
     let mut fk: Vec<Vec<f64>> = model
         .fk_rows
         .iter()
@@ -106,16 +141,63 @@ pub fn values(chain: &Chain, model: &Model, dets: &Determinants, q: &[f64]) -> V
         manipulability_task: task_jacobian.as_ref().map(|t| manipulability(t, n)),
         manipulability_trans: manipulability(&jacobian[..3], n),
         manipulability_rot: manipulability(&jacobian[3..], n),
+        second: second_order(chain, derived, q, qd, &jacobian),
         jacobian,
         jacobian_ee,
         task_jacobian,
     }
 }
 
+/// The second-order values at `q` (and `qd`), `jacobian` the values of J there.
+fn second_order(
+    chain: &Chain,
+    derived: &Derived,
+    q: &[f64],
+    qd: Option<&[f64]>,
+    jacobian: &[Vec<f64>],
+) -> SecondOrderValues {
+    let (model, s) = (&derived.model, &derived.second);
+    let n = chain.dof();
+    let hessian: Vec<Vec<Vec<f64>>> = s.hessian.iter().map(|h| rows(model, chain, q, h)).collect();
+    let jacobian_dot = qd.map(|qd| {
+        s.jacobian_dot
+            .iter()
+            .map(|r| model.eval_with_rates(chain, q, Some(qd), r))
+            .collect()
+    });
+    let jdot_qdot = qd.map(|qd| model.eval_with_rates(chain, q, Some(qd), &s.jdot_qdot));
+    let det_gradient = match &derived.det_gradient {
+        Some(Ok(g)) => Some(model.eval(chain, q, &g.gradient)),
+        _ => None,
+    };
+    // Rows `rows` of J and of every H[j], for the manipulability gradient.
+    let gradient = |rows: &[usize]| {
+        let pick = |m: &[Vec<f64>]| DMatrix::from_fn(rows.len(), n, |r, c| m[rows[r]][c]);
+        let hs: Vec<DMatrix<f64>> = hessian.iter().map(|h| pick(h)).collect();
+        kinegen_core::numeric::manipulability_gradient(&pick(jacobian), &hs)
+    };
+    let all: Vec<usize> = (0..6).collect();
+    let manipulability_task_gradient = chain.task.as_ref().map(|t| {
+        let rows: Vec<usize> = t.iter().map(|r| r.index()).collect();
+        gradient(&rows)
+    });
+    SecondOrderValues {
+        manipulability_gradient: gradient(&all),
+        manipulability_task_gradient,
+        hessian,
+        jacobian_dot,
+        jdot_qdot,
+        det_gradient,
+    }
+}
+
 /// The JSON object: `{"fk", "jacobian", "jacobian_ee", "det", "task_jacobian",
 /// "det_task", "manipulability", "manipulability_task", "manipulability_trans",
-/// "manipulability_rot"}` (`null` where a value does not exist).
+/// "manipulability_rot", "hessian", "jacobian_dot", "jdot_qdot", "det_gradient",
+/// "manipulability_gradient", "manipulability_task_gradient"}` (`null` where a value
+/// does not exist; `jacobian_dot` and `jdot_qdot` without `--qd`).
 pub fn to_json(v: &Values) -> Value {
+    let s = &v.second;
     json!({
         "fk": v.fk,
         "jacobian": v.jacobian,
@@ -127,6 +209,12 @@ pub fn to_json(v: &Values) -> Value {
         "manipulability_task": v.manipulability_task,
         "manipulability_trans": v.manipulability_trans,
         "manipulability_rot": v.manipulability_rot,
+        "hessian": s.hessian,
+        "jacobian_dot": s.jacobian_dot,
+        "jdot_qdot": s.jdot_qdot,
+        "det_gradient": s.det_gradient,
+        "manipulability_gradient": s.manipulability_gradient,
+        "manipulability_task_gradient": s.manipulability_task_gradient,
     })
 }
 
@@ -161,7 +249,44 @@ pub fn to_table(chain: &Chain, q: &[f64], v: &Values, missing: &str) -> String {
     }
     let _ = writeln!(s, "  trans [vx vy vz]     {:.12}", v.manipulability_trans);
     let _ = writeln!(s, "  rot [ωx ωy ωz]       {:.12}", v.manipulability_rot);
+    second_order_table(&mut s, chain, &v.second, missing);
     s
+}
+
+fn vector(s: &mut String, title: &str, x: &[f64]) {
+    let cells: Vec<String> = x.iter().map(|x| format!("{x:>12.6}")).collect();
+    let _ = writeln!(s, "{title:<30} {}", cells.join(" "));
+}
+
+/// The second-order part of [`to_table`].
+fn second_order_table(s: &mut String, chain: &Chain, v: &SecondOrderValues, missing: &str) {
+    let rows6 = ["vx", "vy", "vz", "ωx", "ωy", "ωz"];
+    for (j, h) in v.hessian.iter().enumerate() {
+        matrix(s, &format!("\nhessian H[{j}] = ∂J/∂q{}", j + 1), &rows6, h);
+    }
+    match (&v.jacobian_dot, &v.jdot_qdot) {
+        (Some(jd), Some(a)) => {
+            matrix(s, "\njacobian_dot (world frame)", &rows6, jd);
+            s.push('\n');
+            vector(s, "jdot_qdot", a);
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "\njacobian_dot, jdot_qdot: give the joint rates with --qd"
+            );
+        }
+    }
+    match &v.det_gradient {
+        Some(g) => vector(s, "det_gradient", g),
+        None => {
+            let _ = writeln!(s, "{:<30} {missing}", "det_gradient");
+        }
+    }
+    vector(s, "manipulability_gradient", &v.manipulability_gradient);
+    if let (Some(g), Some(_)) = (&v.manipulability_task_gradient, &chain.task) {
+        vector(s, "manipulability_task_gradient", g);
+    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //!
 //! - `kinegen show ROBOT [--what fk|jacobian|det|singularities|all|model] [--latex]`
 //! - `kinegen rust ROBOT` — the code `kinematics!` generates, pretty-printed
-//! - `kinegen eval ROBOT --q 0.1,0.2,… [--json]`
+//! - `kinegen eval ROBOT --q 0.1,0.2,… [--qd 0.3,…] [--json]`
 //! - `kinegen stats ROBOT [--json]`
 //! - `kinegen ik ROBOT --pose m00,…,m33 [--near q1,…] [--json]` or `--poses FILE.json
 //!   [--near FILE.json]` — every closed-form IK solution
@@ -73,6 +73,10 @@ pub enum Command {
         /// Joint values, comma-separated (radians / metres), one per joint.
         #[arg(long, allow_hyphen_values = true)]
         q: String,
+        /// Joint rates, comma-separated (rad/s / m/s), one per joint: for `jacobian_dot`
+        /// and `jdot_qdot` (null without).
+        #[arg(long, allow_hyphen_values = true)]
+        qd: Option<String>,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -143,13 +147,18 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             robot,
             urdf,
             q,
+            qd,
             json,
         } => {
             let (chain, options) = robots::load(robot, urdf)?;
             let q = eval::parse_q(q, chain.dof())?;
+            let qd = qd
+                .as_ref()
+                .map(|qd| eval::parse_joint_values(qd, chain.dof(), "--qd"))
+                .transpose()?;
             let derived = derive(&chain, &options);
             let dets = det_hook::determinants(&chain, &derived);
-            let v = eval::values(&chain, &derived.model, &dets, &q);
+            let v = eval::values(&chain, &derived, &dets, &q, qd.as_deref());
             Ok(if *json {
                 format!("{}\n", eval::to_json(&v))
             } else {

@@ -18,6 +18,9 @@ pub struct Stats {
     pub jacobian: OpCount,
     /// The determinant's code, where the engine has it.
     pub det: Option<OpCount>,
+    /// The second-order functions as generated: `hessian`, `jacobian_dot`, `jdot_qdot`,
+    /// `jacobian_ee_dot`, and `det_gradient` where there is one.
+    pub second: Vec<(&'static str, OpCount)>,
     /// Wall time of `generate`, milliseconds.
     pub time_ms: f64,
 }
@@ -36,10 +39,19 @@ pub fn stats(
         .as_ref()
         .or(dets.det_task.as_ref())
         .map(|d| Coder::new(chain, &model.sym).body(&[d.node]).ops);
+    let g = &generated.stats;
+    let mut second = vec![
+        ("hessian", g.hessian),
+        ("jacobian_dot", g.jacobian_dot),
+        ("jdot_qdot", g.jdot_qdot),
+        ("jacobian_ee_dot", g.jacobian_ee_dot),
+    ];
+    second.extend(g.det_gradient.map(|o| ("det_gradient", o)));
     Stats {
-        fk: generated.stats.fk,
-        jacobian: generated.stats.jacobian,
+        fk: g.fk,
+        jacobian: g.jacobian,
         det,
+        second,
         time_ms,
     }
 }
@@ -48,14 +60,22 @@ fn ops_json(o: &OpCount) -> Value {
     json!({"add": o.add, "mul": o.mul, "div": o.div, "neg": o.neg, "trig": o.trig, "total": o.total()})
 }
 
-/// `{"fk": {…}, "jacobian": {…}, "det": {…} or null, "time_ms": …}`.
+/// `{"fk": {…}, "jacobian": {…}, "det": {…} or null, "hessian": {…}, "jacobian_dot":
+/// {…}, "jdot_qdot": {…}, "jacobian_ee_dot": {…}, "det_gradient": {…} or null,
+/// "time_ms": …}`.
 pub fn to_json(s: &Stats) -> Value {
-    json!({
+    let mut v = json!({
         "fk": ops_json(&s.fk),
         "jacobian": ops_json(&s.jacobian),
         "det": s.det.as_ref().map(ops_json),
-        "time_ms": s.time_ms,
-    })
+    });
+    let obj = v.as_object_mut().expect("an object");
+    obj.insert("det_gradient".into(), Value::Null);
+    for (name, o) in &s.second {
+        obj.insert((*name).into(), ops_json(o));
+    }
+    obj.insert("time_ms".into(), json!(s.time_ms));
+    v
 }
 
 /// A readable table.
@@ -64,10 +84,10 @@ pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
         "{} — operations of the generated code (after sharing; a subtraction counts as an add)\n\n{:<10}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}\n",
         chain.name, "output", "add", "mul", "div", "neg", "total", "trig"
     );
-    let row = |out: &mut String, name: &str, o: &OpCount| {
+    let row_of = |out: &mut String, width: usize, name: &str, o: &OpCount| {
         let _ = writeln!(
             out,
-            "{name:<10}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}",
+            "{name:<width$}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}",
             o.add,
             o.mul,
             o.div,
@@ -76,6 +96,7 @@ pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
             o.trig
         );
     };
+    let row = |out: &mut String, name: &str, o: &OpCount| row_of(out, 10, name, o);
     row(&mut out, "fk", &s.fk);
     row(&mut out, "jacobian", &s.jacobian);
     match &s.det {
@@ -83,6 +104,14 @@ pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
         None => {
             let _ = writeln!(out, "{:<10}{missing}", "det");
         }
+    }
+    let _ = writeln!(
+        out,
+        "\n{:<16}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}",
+        "second order", "add", "mul", "div", "neg", "total", "trig"
+    );
+    for (name, o) in &s.second {
+        row_of(&mut out, 16, name, o);
     }
     let _ = writeln!(out, "\nengine time: {:.1} ms", s.time_ms);
     out

@@ -284,9 +284,21 @@ fn eval_planar_rr_by_hand() {
             "manipulability",
             "manipulability_task",
             "manipulability_trans",
-            "manipulability_rot"
+            "manipulability_rot",
+            "hessian",
+            "jacobian_dot",
+            "jdot_qdot",
+            "det_gradient",
+            "manipulability_gradient",
+            "manipulability_task_gradient"
         ]
     );
+    // Without --qd the rate-dependent values are null; det J = L1 L2 s2 has the gradient
+    // (0, L1 L2 c2).
+    assert!(v["jacobian_dot"].is_null() && v["jdot_qdot"].is_null());
+    let g = v["det_gradient"].as_array().unwrap();
+    assert_eq!(g[0].as_f64(), Some(0.0));
+    assert!((g[1].as_f64().unwrap() - 0.5f64.cos()).abs() < 1e-15);
     // Planar RRR, task [x, y, rz]: |det Jt| = a1 a2 |s2| = 3.5² |sin 0.5|.
     let v: Value = serde_json::from_str(&stdout(&[
         "eval",
@@ -314,6 +326,95 @@ fn eval_planar_rr_by_hand() {
     );
     assert!((w - det.abs()).abs() < 1e-12, "{w} vs |{det}|");
     assert!(v["manipulability_task"].is_null());
+}
+
+/// `--qd` adds `jacobian_dot` and `jdot_qdot`; every second-order value equals the
+/// numeric reference (cross products of the joint axes, velocity/acceleration
+/// propagation, central differences), within 1e-12 for closed forms and 1e-7 for
+/// differences (h = 1e-5 on metre-sized arms).
+#[test]
+fn eval_second_order_matches_the_numeric_reference() {
+    let cases: [(&str, &[f64], &[f64]); 3] = [
+        (
+            "ur5",
+            &[0.1, -0.7, 1.3, 0.4, -2.2, 0.9],
+            &[0.5, -0.3, 0.8, 0.2, -1.0, 0.4],
+        ),
+        (
+            "panda",
+            &[0.1, -0.4, 0.2, -2.0, 0.3, 1.6, 0.7],
+            &[0.3, 0.2, -0.4, 0.5, 0.1, -0.2, 0.6],
+        ),
+        ("scara", &[0.5, -0.4, 0.1, 0.7], &[0.2, -0.6, 0.05, 1.0]),
+    ];
+    let list = |x: &[f64]| {
+        x.iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    for (name, q, qd) in cases {
+        let text = stdout(&["eval", name, "--q", &list(q), "--qd", &list(qd), "--json"]);
+        let v: Value = serde_json::from_str(&text).unwrap();
+        let (robot, _) = toml_file::load_file(&robot_file(name)).unwrap();
+        let n = robot.dof();
+        let reference = numeric::NumericRobot::new(&robot).unwrap();
+        let h = reference.hessian(q).unwrap();
+        let hs = v["hessian"].as_array().unwrap();
+        assert_eq!(hs.len(), n, "{name}");
+        for (k, hk) in hs.iter().enumerate() {
+            assert_close(name, &matrix(hk), |r, c| h[k][(r, c)], 6, n);
+        }
+        let jd = reference.jacobian_dot_fd(q, qd, 1e-5).unwrap();
+        let got = matrix(&v["jacobian_dot"]);
+        for r in 0..6 {
+            for c in 0..n {
+                assert!((got[r][c] - jd[(r, c)]).abs() < 1e-7, "{name} J̇[{r}][{c}]");
+            }
+        }
+        let a = reference.jdot_qdot_propagation(q, qd).unwrap();
+        let got: Vec<f64> = v["jdot_qdot"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert_close(name, &[got], |_, c| a[c], 1, 6);
+        let j = reference.jacobian(q).unwrap();
+        let jm = nalgebra::DMatrix::from_fn(6, n, |r, c| j[(r, c)]);
+        let hm: Vec<_> = h
+            .iter()
+            .map(|hk| nalgebra::DMatrix::from_fn(6, n, |r, c| hk[(r, c)]))
+            .collect();
+        let want = numeric::manipulability_gradient(&jm, &hm);
+        let got: Vec<f64> = v["manipulability_gradient"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert_close(name, &[got], |_, c| want[c], 1, n);
+        assert_eq!(v["det_gradient"].is_null(), n == 7, "{name}");
+        assert_eq!(
+            v["manipulability_task_gradient"].is_null(),
+            robot.task.is_none(),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn eval_table_shows_the_second_order_values() {
+    let t = stdout(&["eval", "planar_rr", "--q", "0.3,0.5", "--qd", "1,-1"]);
+    assert!(t.contains("hessian H[1] = ∂J/∂q2"), "{t}");
+    assert!(t.contains("jacobian_dot (world frame)"), "{t}");
+    assert!(t.contains("jdot_qdot "), "{t}");
+    assert!(t.contains("manipulability_task_gradient "), "{t}");
+    let t = stdout(&["eval", "planar_rr", "--q", "0.3,0.5"]);
+    assert!(
+        t.contains("jacobian_dot, jdot_qdot: give the joint rates with --qd"),
+        "{t}"
+    );
 }
 
 #[test]
@@ -360,6 +461,20 @@ fn stats_counts_are_the_generated_code_s() {
         "{table}"
     );
     assert!(table.contains("engine time: "), "{table}");
+    // The second-order functions, counted as generated.
+    for (key, ops) in [
+        ("hessian", g.stats.hessian),
+        ("jacobian_dot", g.stats.jacobian_dot),
+        ("jdot_qdot", g.stats.jdot_qdot),
+        ("jacobian_ee_dot", g.stats.jacobian_ee_dot),
+        ("det_gradient", g.stats.det_gradient.unwrap()),
+    ] {
+        assert_eq!(v[key]["total"].as_u64(), Some(ops.total() as u64), "{key}");
+        assert!(
+            table.contains(&format!("{key:<16}{:>6}", ops.add)),
+            "{table}"
+        );
+    }
 }
 
 #[test]
@@ -410,6 +525,20 @@ fn non_numeric_joint_value() {
     assert_eq!(
         e,
         "kinegen: error: --q: joint value 1 `inf` is not a finite number\n"
+    );
+}
+
+#[test]
+fn bad_joint_rates() {
+    let e = fails(&["eval", "ur5", "--q", "0,0,0,0,0,0", "--qd", "0.1,0.2"]);
+    assert_eq!(
+        e,
+        "kinegen: error: --qd: the robot has 6 joints but 2 joint values were given\n"
+    );
+    let e = fails(&["eval", "planar_rr", "--q", "0,0", "--qd", "nan,1"]);
+    assert_eq!(
+        e,
+        "kinegen: error: --qd: joint value 1 `nan` is not a finite number\n"
     );
 }
 

@@ -5,8 +5,9 @@
 
 use kinegen_cli::det_hook::{Determinant, Determinants, Factor};
 use kinegen_cli::{eval, formulas, robots, stats, What};
+use kinegen_core::kinematics::second_order::second_order;
 use kinegen_core::simplify::order;
-use kinegen_core::{generate, numeric, ItemHeader};
+use kinegen_core::{generate, numeric, Derived, ItemHeader};
 
 #[test]
 fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
@@ -38,7 +39,15 @@ fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
     assert!(sing.contains(r"s_{2} &= 0"), "{sing}");
 
     let q = [0.3, -1.1];
-    let v = eval::values(&chain, &model, &dets, &q);
+    let second = second_order(&chain, &mut model);
+    let derived = Derived {
+        model,
+        det: None,
+        second,
+        det_gradient: None,
+        ik: None,
+    };
+    let v = eval::values(&chain, &derived, &dets, &q, None);
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/planar_rr.toml");
     let (robot, _) = kinegen_core::front::toml_file::load_file(path.as_ref()).unwrap();
     let reference = numeric::det(&numeric::task_jacobian(&robot, &q).unwrap()).unwrap();
@@ -48,7 +57,7 @@ fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
     assert!(v.det.is_none());
 
     let generated = generate(&chain, &ItemHeader::public(&chain.name), &options);
-    let s = stats::stats(&chain, &model, &dets, &generated, 1.0);
+    let s = stats::stats(&chain, &derived.model, &dets, &generated, 1.0);
     let ops = s.det.unwrap();
     assert!(ops.mul >= 2 && ops.add >= 1 && ops.trig == 2, "{ops:?}");
     assert!(stats::to_json(&s)["det"]["total"].is_u64());

@@ -2,7 +2,8 @@
 //! pretty-printable Rust item out.
 //!
 //! ```text
-//! Chain ─ simplify::order ─▶ Model ─ det ─▶ DetModel ─ emit::functions ─▶ Functions ─ emit::rust ─▶ tokens
+//! Chain ─ simplify::order ─▶ Model ─ det ─▶ DetModel ─ second order ─▶ SecondOrder, DetGradient
+//!       ─ emit::functions ─▶ Functions ─ emit::rust ─▶ tokens
 //! ```
 
 use proc_macro2::TokenStream;
@@ -11,12 +12,15 @@ use crate::chain::Chain;
 use crate::emit::functions::{functions, Stats};
 use crate::emit::rust::{item, ItemHeader};
 use crate::kinematics::det::closed_form::{self, DetModel};
+use crate::kinematics::det::gradient::{det_gradient, DetGradient};
 use crate::kinematics::det::structural::square_rows;
 use crate::kinematics::ik::{self, IkModel};
 use crate::kinematics::model::Model;
+use crate::kinematics::second_order::{second_order, SecondOrder};
 use crate::model::options::{Deadline, Options};
 use crate::model::robot::Scalar;
 use crate::simplify::order::cheapest;
+use crate::simplify::pass::simplify_second_order;
 
 /// The engine's output.
 #[derive(Clone, Debug)]
@@ -49,6 +53,11 @@ pub struct Derived {
     /// The closed-form determinant of the square Jacobian (`Err`: why not; `None`: the
     /// Jacobian is not square).
     pub det: Option<Result<DetModel, String>>,
+    /// The Hessian, `J̇`, `J̇ q̇` and `J̇_ee`, built on the model's Jacobian.
+    pub second: SecondOrder,
+    /// The gradient of the closed-form determinant and of its factors (`None`: no closed
+    /// form; `Err`: why not).
+    pub det_gradient: Option<Result<DetGradient, String>>,
     /// Closed-form IK (`Err`: why no family fits; `None`: not attempted — f32 robots,
     /// whose runtime solvers are f64 only).
     pub ik: Option<Result<IkModel, String>>,
@@ -69,7 +78,14 @@ pub struct Derived {
 pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
     let derived = derive(chain, options);
     // What the type holds: each method's straight-line code and doc, the constants.
-    let functions = functions(chain, &derived.model, &derived.det, &derived.ik);
+    let functions = functions(
+        chain,
+        &derived.model,
+        &derived.det,
+        &derived.second,
+        &derived.det_gradient,
+        &derived.ik,
+    );
     // Printed, and parsed into tokens.
     let tokens = item(chain, header, &functions);
     let mut notes = derived.model.notes;
@@ -90,7 +106,21 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
     let mut model = cheapest(chain, options, deadline);
     // The determinant of the square Jacobian, factored, in closed form.
     let det = square_rows(chain).map(|_| closed_form::determinant(chain, &mut model));
+    // Second order on the simplified Jacobian's nodes: Hessian, J̇, J̇q̇, J̇_ee, with
+    // signs moved for the fewest negations (checked); the determinant's gradient.
+    let mut second = second_order(chain, &mut model);
+    simplify_second_order(&mut model, &mut second);
+    let det_gradient = match &det {
+        Some(Ok(d)) => Some(det_gradient(&mut model, d, chain.dof())),
+        _ => None,
+    };
     // The IK family, decided exactly from the axes at q = 0, and its geometry.
     let ik = (chain.scalar == Scalar::F64).then(|| ik::model(chain, options.budget.max_terms()));
-    Derived { model, det, ik }
+    Derived {
+        model,
+        det,
+        second,
+        det_gradient,
+        ik,
+    }
 }

@@ -131,10 +131,13 @@ fn close(got: f64, want: f64, what: &str) {
 }
 
 /// The engine's model (what `generate` emits, evaluated node by node) equals the numeric
-/// reference: FK, both Jacobians and, when there is one, the closed-form determinant.
+/// reference: FK, both Jacobians, when there is one the closed-form determinant, the
+/// Hessian and `J̇ q̇`.
 fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: usize) {
     let chain = robot.chain();
-    let Derived { model, det, .. } = derive(&chain, options);
+    let Derived {
+        model, det, second, ..
+    } = derive(&chain, options);
     let det = det.and_then(Result::ok);
     let num = NumericRobot::new(robot).unwrap();
     let n = robot.dof();
@@ -170,6 +173,22 @@ fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: 
             let want = numeric::det(&num.task_jacobian(&q).unwrap()).unwrap();
             let got = model.eval(&chain, &q, &[d.node])[0];
             close(got, want, "det J");
+        }
+        let h = num.hessian(&q).unwrap();
+        for (k, hk) in second.hessian.iter().enumerate() {
+            let ids: Vec<_> = hk.iter().flatten().copied().collect();
+            let got = model.eval(&chain, &q, &ids);
+            for r in 0..6 {
+                for c in 0..n {
+                    close(got[r * n + c], h[k][(r, c)], &format!("H[{k}][{r}][{c}]"));
+                }
+            }
+        }
+        let qd: Vec<f64> = (0..n).map(|_| rng.range(-2.0, 2.0)).collect();
+        let want = num.jdot_qdot_propagation(&q, &qd).unwrap();
+        let got = model.eval_with_rates(&chain, &q, Some(&qd), &second.jdot_qdot);
+        for r in 0..6 {
+            close(got[r], want[r], &format!("J̇q̇[{r}]"));
         }
     }
 }

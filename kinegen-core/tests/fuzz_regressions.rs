@@ -38,7 +38,8 @@ fn the_shadowing_check_sees_a_rebound_local() {
 
 /// A parameter named like a generated intermediate (`s2 = sin(q2)`, `c2`, `t1`, `s12`)
 /// once gave `let s2 = self.s2; let (s2, _) = sin_cos(q[1]);` — the parameter shadowed
-/// by sin(q2), the determinant silently wrong. Such names are now rejected up front.
+/// by sin(q2), the determinant silently wrong. Such names are now rejected up front, as
+/// are the joint rates' (`qd`, `qd2`).
 #[test]
 fn parameters_named_like_generated_locals() {
     for (l1, l2) in [
@@ -48,6 +49,9 @@ fn parameters_named_like_generated_locals() {
         ("c1", "L2"),
         ("s_k1", "L2"),
         ("nc23", "L2"),
+        // The joint rates of `jdot_qdot(q, qd)`: `let qd2 = qd[1];`.
+        ("qd", "L2"),
+        ("qd2", "L2"),
     ] {
         assert_eq!(
             check::toml(&planar_rr(l1, l2), &Q),
@@ -56,7 +60,13 @@ fn parameters_named_like_generated_locals() {
         );
     }
     // Look-alikes that the code never binds stay usable.
-    for (l1, l2) in [("s", "c"), ("t", "cx"), ("sa1", "c_bar"), ("n1", "nt2")] {
+    for (l1, l2) in [
+        ("s", "c"),
+        ("t", "cx"),
+        ("sa1", "c_bar"),
+        ("n1", "nt2"),
+        ("qdx", "qd_2"),
+    ] {
         assert_eq!(
             check::toml(&planar_rr(l1, l2), &Q),
             Outcome::Checked,

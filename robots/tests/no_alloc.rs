@@ -1,6 +1,8 @@
 //! Generated calls never touch the heap: a counting global allocator sees zero
-//! allocations across fk, frames, jacobian, jacobian_ee, task_jacobian, the determinant and
-//! the closed-form IK.
+//! allocations across fk, frames, jacobian, jacobian_ee, task_jacobian, the determinant,
+//! the closed-form IK, and the second-order methods (hessian, jacobian_dot, jdot_qdot,
+//! jacobian_ee_dot, det_gradient, singular_factor_gradients and the manipulability
+//! gradients, whose SVD runs on the stack).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -28,6 +30,12 @@ unsafe impl GlobalAlloc for Counting {
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.with(Cell::get) {
+            ALLOCS.fetch_add(1, Ordering::SeqCst);
+        }
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
 }
 
 #[global_allocator]
@@ -39,6 +47,12 @@ fn generated_calls_do_not_allocate() {
     let q6 = [0.1, -1.2, 1.4, -0.3, 1.1, 0.2];
     let q7 = [0.1, -0.4, 0.2, -2.0, 0.3, 1.6, 0.7];
     let q3 = [0.3, 0.4, -0.2];
+    // The counter does count.
+    COUNTING.with(|c| c.set(true));
+    let v = vec![1u8; 16];
+    COUNTING.with(|c| c.set(false));
+    assert_eq!(ALLOCS.load(Ordering::SeqCst), 1);
+    drop(v);
     COUNTING.with(|c| c.set(true));
     let before = ALLOCS.load(Ordering::SeqCst);
     let mut acc = 0.0;
@@ -52,6 +66,13 @@ fn generated_calls_do_not_allocate() {
         let pose = ur5.fk(&q6);
         acc += ur5.ik(&pose).len() as f64 + ur5.ik_near(&pose, &q6).map_or(0.0, |q| q[0]);
         acc += rrr.ik(&rrr.fk(&q3)).len() as f64;
+        acc += ur5.hessian(&q6)[1][0][2] + ur5.jdot_qdot(&q6, &q6)[3];
+        acc += ur5.jacobian_dot(&q6, &q6)[0][1] + ur5.jacobian_ee_dot(&q6, &q6)[4][5];
+        acc += ur5.det_gradient(&q6)[2] + ur5.singular_factor_gradients(&q6)[4][1];
+        acc += ur5.manipulability_gradient(&q6)[3];
+        acc += panda.hessian(&q7)[6][2][0] + panda.jdot_qdot(&q7, &q7)[0];
+        acc += panda.jacobian_dot(&q7, &q7)[1][1] + panda.manipulability_gradient(&q7)[6];
+        acc += rrr.manipulability_task_gradient(&q3)[1] + rrr.det_gradient(&q3)[0];
     }
     let after = ALLOCS.load(Ordering::SeqCst);
     COUNTING.with(|c| c.set(false));

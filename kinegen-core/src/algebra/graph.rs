@@ -519,6 +519,28 @@ impl Graph {
         }
     }
 
+    /// Operations (additions, subtractions, products, negations of non-constants)
+    /// reachable from `outputs`, each shared node once: what straight-line code computing
+    /// them costs.
+    pub fn op_count(&self, outputs: &[Id]) -> usize {
+        let mut seen = std::collections::BTreeSet::new();
+        let mut stack = outputs.to_vec();
+        let mut ops = 0;
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
+            let node = &self.nodes[id as usize];
+            ops += usize::from(match node {
+                Node::Num(_) | Node::Leaf(_) => false,
+                Node::Neg(x) => self.as_num(*x).is_none(),
+                _ => true,
+            });
+            stack.extend(node.children());
+        }
+        ops
+    }
+
     /// Numeric value of a node with variable values `x`.
     pub fn eval(&self, id: Id, x: &dyn Fn(Var) -> f64) -> f64 {
         self.eval_in(id, x, &mut EvalScratch::default())
@@ -529,6 +551,16 @@ impl Graph {
     pub fn eval_in(&self, id: Id, x: &dyn Fn(Var) -> f64, scratch: &mut EvalScratch) -> f64 {
         scratch.start(self.nodes.len());
         self.eval_memo(id, x, scratch)
+    }
+
+    /// Values of several nodes at the same variable values `x`, each shared node
+    /// evaluated once.
+    pub fn eval_all(&self, ids: &[Id], x: &dyn Fn(Var) -> f64) -> Vec<f64> {
+        let mut scratch = EvalScratch::default();
+        scratch.start(self.nodes.len());
+        ids.iter()
+            .map(|&id| self.eval_memo(id, x, &mut scratch))
+            .collect()
     }
 
     fn eval_memo(&self, id: Id, x: &dyn Fn(Var) -> f64, memo: &mut EvalScratch) -> f64 {

@@ -29,6 +29,9 @@ pub enum VarKind {
     Cos(usize),
     /// Value of a prismatic joint (its index).
     Joint(usize),
+    /// Rate `q̇_j` of joint `j` (its index): an input of the velocity-dependent outputs
+    /// (`jdot_qdot`, `jacobian_dot`), constant as far as `∂/∂q` is concerned.
+    Rate(usize),
     /// A named link parameter.
     Param(String),
     /// `√k` for a small integer k (2 or 3).
@@ -339,6 +342,7 @@ enum VarKindKey {
     Sin(usize),
     Cos(usize),
     Joint(usize),
+    Rate(usize),
     Param(String),
     Sqrt(u32),
 }
@@ -349,6 +353,7 @@ impl From<&VarKind> for VarKindKey {
             VarKind::Sin(a) => VarKindKey::Sin(*a),
             VarKind::Cos(a) => VarKindKey::Cos(*a),
             VarKind::Joint(j) => VarKindKey::Joint(*j),
+            VarKind::Rate(j) => VarKindKey::Rate(*j),
             VarKind::Param(n) => VarKindKey::Param(n.clone()),
             VarKind::Sqrt(k) => VarKindKey::Sqrt(*k),
         }
@@ -392,6 +397,11 @@ impl Ring {
     /// A prismatic joint's value.
     pub fn joint(&mut self, j: usize, name: &str) -> Var {
         self.var(VarKind::Joint(j), name)
+    }
+
+    /// The rate `q̇_j` of joint `j`.
+    pub fn rate(&mut self, j: usize, name: &str) -> Var {
+        self.var(VarKind::Rate(j), name)
     }
 
     /// A named link parameter.
@@ -480,6 +490,33 @@ impl Ring {
     pub fn mul(&self, a: &Poly, b: &Poly) -> Poly {
         self.mul_bounded(a, b, usize::MAX / 16)
             .expect("unbounded product cannot exceed its bound")
+    }
+
+    /// The derivative `dp/dx` of `p` along a variable `x` of which every ring variable
+    /// `v` is a function with derivative `dv(v)` (`None`: constant), in normal form.
+    ///
+    /// The product rule term by term: `d(c·Π vᵉ) = Σ_v c·e·vᵉ⁻¹·dv·Π_(w≠v) wᶠ`, each
+    /// product reduced. For `x = q_j`: `ds = sign·c` and `dc = −sign·s` for the angle
+    /// `sign·q_j + offset`, `dq_j = 1` for a prismatic joint, everything else constant —
+    /// which keeps `d(s² + c²) = 2sc − 2cs = 0`, so the derivative of a normal form is the
+    /// derivative of the function it stands for.
+    pub fn derivative(&self, p: &Poly, dv: &dyn Fn(Var) -> Option<Poly>) -> Poly {
+        let mut out = Poly::zero();
+        for (m, c) in &p.terms {
+            for (i, &(v, e)) in m.iter().enumerate() {
+                let Some(d) = dv(v) else { continue };
+                let mut rest = m.clone();
+                if e == 1 {
+                    rest.remove(i);
+                } else {
+                    rest[i].1 = e - 1;
+                }
+                let k = c * Rat::from_integer(e.into());
+                let term = self.mul(&Poly::from_terms([(rest, k)]), &d);
+                out = out.add(&term);
+            }
+        }
+        out
     }
 
     /// Display a polynomial in the ring's variable names (for tests and messages).
@@ -572,6 +609,33 @@ mod tests {
         assert_eq!(m, vec![(a, 1)]);
         assert_eq!(k, Rat::new(2.into(), 1.into()));
         assert_eq!(r.display(&p.div_content(&m, &k)).to_string(), "s2 + 2*c2*a");
+    }
+
+    #[test]
+    fn derivative_is_exact_on_the_circle() {
+        let mut r = Ring::new();
+        let (s, c) = r.angle(0, "1");
+        let a = r.param("a");
+        // d/dq of s·c·a = (c² − s²)·a = (2c² − 1)·a, and of s² + c² (= 1) is 0.
+        let d = |v: Var| {
+            if v == s {
+                Some(Poly::var(c))
+            } else if v == c {
+                Some(Poly::var(s).neg())
+            } else {
+                None
+            }
+        };
+        let p = r.mul(&r.mul(&Poly::var(s), &Poly::var(c)), &Poly::var(a));
+        let dp = r.derivative(&p, &d);
+        assert_eq!(r.display(&dp).to_string(), "2*c1^2*a - a");
+        let one = r
+            .mul(&Poly::var(s), &Poly::var(s))
+            .add(&r.mul(&Poly::var(c), &Poly::var(c)));
+        assert!(r.derivative(&one, &d).is_zero());
+        // A variable with a polynomial derivative, raised to a power: d(c³) = −3c²s.
+        let c3 = r.mul(&r.mul(&Poly::var(c), &Poly::var(c)), &Poly::var(c));
+        assert_eq!(r.display(&r.derivative(&c3, &d)).to_string(), "-3*s1*c1^2");
     }
 
     #[test]

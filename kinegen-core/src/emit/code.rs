@@ -159,8 +159,8 @@ impl<'a> Coder<'a> {
         (uses, seen)
     }
 
-    /// `let`s for the inputs the body reads: parameters, prismatic joint values, and
-    /// the sines and cosines (the f64 joint angles in one batched `sin_cos_n` call,
+    /// `let`s for the inputs the body reads: parameters, prismatic joint values, joint
+    /// rates (`let qd2 = qd[1];`), and the sines and cosines (the f64 joint angles in one batched `sin_cos_n` call,
     /// which goes where the first of them would have gone).
     fn inputs(&self, seen: &BTreeSet<Id>, body: &mut Body) {
         let g = self.g();
@@ -180,6 +180,12 @@ impl<'a> Coder<'a> {
         for (j, v) in &self.sym.joint_vars {
             if used_vars.contains(v) {
                 body.lets.push(format!("let q{} = q[{j}];", j + 1));
+            }
+        }
+        for (j, v) in &self.sym.rate_vars {
+            if used_vars.contains(v) {
+                body.lets
+                    .push(format!("let {} = qd[{j}];", g.ring.name(*v)));
             }
         }
         // `(sine, cosine, argument)` of the batched f64 joint angles.

@@ -8,69 +8,14 @@ use crate::emit::code::{Body, Coder, OpCount};
 use crate::emit::docs::{formula_doc, matrix_names};
 use crate::emit::formulas::Formulas;
 use crate::emit::ik::{items as ik_items, CheckImpl};
+pub use crate::emit::item::{Const, Item, Method, MethodBody};
 use crate::kinematics::det::closed_form::DetModel;
+use crate::kinematics::det::gradient::DetGradient;
 use crate::kinematics::det::structural::square_rows;
 use crate::kinematics::ik::IkModel;
 use crate::kinematics::model::Model;
+use crate::kinematics::second_order::SecondOrder;
 use crate::model::robot::Scalar;
-
-/// A method `pub fn name(&self, q: &[F; N]) -> ret`.
-#[derive(Clone, Debug)]
-pub struct Method {
-    /// Rustdoc (markdown, several lines).
-    pub doc: String,
-    /// The method's name.
-    pub name: &'static str,
-    /// Return type.
-    pub ret: String,
-    /// What it computes: straight-line code, or one expression.
-    pub body: MethodBody,
-}
-
-/// A method's body.
-#[derive(Clone, Debug)]
-pub enum MethodBody {
-    /// `let`s, then `result` built from the body's output expressions.
-    Code {
-        /// Statements and outputs.
-        body: Body,
-        /// The returned expression.
-        result: String,
-    },
-    /// A single expression (the numeric determinant fallback).
-    Expr(String),
-    /// Other arguments than `q`: `pub fn name(&self, args) -> ret { lets; result }`.
-    Custom {
-        /// The arguments after `&self` (`pose: &[[f64; 4]; 4]`).
-        args: String,
-        /// Statements.
-        lets: Vec<String>,
-        /// The returned expression.
-        result: String,
-    },
-}
-
-/// A constant `pub const name: ty = value;`.
-#[derive(Clone, Debug)]
-pub struct Const {
-    /// Rustdoc (one line).
-    pub doc: String,
-    /// Name.
-    pub name: &'static str,
-    /// Type.
-    pub ty: String,
-    /// Value (Rust expression).
-    pub value: String,
-}
-
-/// An item of the generated `impl`, in the order printed.
-#[derive(Clone, Debug)]
-pub enum Item {
-    /// A method.
-    Method(Method),
-    /// A constant.
-    Const(Const),
-}
 
 /// Operation counts of the main outputs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -81,6 +26,16 @@ pub struct Stats {
     pub jacobian: OpCount,
     /// `jacobian_det`, when it has a closed form.
     pub det: Option<OpCount>,
+    /// `hessian`.
+    pub hessian: OpCount,
+    /// `jacobian_dot`.
+    pub jacobian_dot: OpCount,
+    /// `jdot_qdot`.
+    pub jdot_qdot: OpCount,
+    /// `jacobian_ee_dot`.
+    pub jacobian_ee_dot: OpCount,
+    /// `det_gradient`, when the determinant has a closed form.
+    pub det_gradient: Option<OpCount>,
 }
 
 /// Everything the generated type holds, ready to print.
@@ -92,6 +47,8 @@ pub struct Functions {
     pub items: Vec<Item>,
     /// Whether `jacobian_det` exists (closed form or numeric), and for which Jacobian.
     pub det: Option<DetOf>,
+    /// Whether `det_gradient` exists.
+    pub det_gradient: bool,
     /// Operation counts.
     pub stats: Stats,
     /// Notes for the user (fallbacks taken while emitting).
@@ -112,12 +69,14 @@ pub enum DetOf {
 }
 
 /// The generated type's contents for `chain`, from its simplified `model`, its
-/// determinant (`None` when the Jacobian is not square) and its closed-form IK (`None`:
-/// not attempted).
+/// determinant (`None` when the Jacobian is not square), its second-order outputs, the
+/// determinant's gradient and its closed-form IK (`None`: not attempted).
 pub fn functions(
     chain: &Chain,
     model: &Model,
     det: &Option<Result<DetModel, String>>,
+    second: &SecondOrder,
+    det_gradient: &Option<Result<DetGradient, String>>,
     ik: &Option<Result<IkModel, String>>,
 ) -> Functions {
     let coder = Coder::new(chain, &model.sym);
@@ -136,7 +95,16 @@ pub fn functions(
     out.jacobians();
     out.task_jacobian();
     let det_of = out.determinant(det);
+    out.second_order(second);
+    if let Some(Ok(d)) = det {
+        out.det_gradient(d, det_gradient);
+    }
+    out.manipulability_gradients();
     out.formulas_and_limits();
+    let det_gradient = out
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::Method(m) if m.name == "det_gradient"));
     let check = match ik {
         Some(Ok(m)) => {
             let factors = matches!(det, Some(Ok(_)));
@@ -164,6 +132,7 @@ pub fn functions(
         fields,
         items: out.items,
         det: det_of,
+        det_gradient,
         stats: out.stats,
         notes: out.notes,
         float: coder.float(),
@@ -172,22 +141,22 @@ pub fn functions(
 }
 
 /// The items as they are made.
-struct Out<'a> {
-    chain: &'a Chain,
-    model: &'a Model,
-    coder: &'a Coder<'a>,
-    items: Vec<Item>,
-    formulas: Formulas,
-    stats: Stats,
-    notes: Vec<String>,
+pub(super) struct Out<'a> {
+    pub(super) chain: &'a Chain,
+    pub(super) model: &'a Model,
+    pub(super) coder: &'a Coder<'a>,
+    pub(super) items: Vec<Item>,
+    pub(super) formulas: Formulas,
+    pub(super) stats: Stats,
+    pub(super) notes: Vec<String>,
 }
 
 impl Out<'_> {
-    fn n(&self) -> usize {
+    pub(super) fn n(&self) -> usize {
         self.chain.dof()
     }
 
-    fn f(&self) -> &'static str {
+    pub(super) fn f(&self) -> &'static str {
         self.coder.float()
     }
 
@@ -195,7 +164,7 @@ impl Out<'_> {
         format!("[[{}; 4]; 4]", self.f())
     }
 
-    fn jac(&self) -> String {
+    pub(super) fn jac(&self) -> String {
         format!("[[{}; {}]; 6]", self.f(), self.n())
     }
 
@@ -209,9 +178,23 @@ impl Out<'_> {
     }
 
     fn method(&mut self, doc: String, name: &'static str, ret: String, body: Body, result: String) {
+        self.method_of(false, doc, name, ret, body, result);
+    }
+
+    /// A method with straight-line code; with `rates` it also takes `qd`.
+    pub(super) fn method_of(
+        &mut self,
+        rates: bool,
+        doc: String,
+        name: &'static str,
+        ret: String,
+        body: Body,
+        result: String,
+    ) {
         self.items.push(Item::Method(Method {
             doc,
             name,
+            rates,
             ret,
             body: MethodBody::Code { body, result },
         }));
@@ -371,6 +354,7 @@ impl Out<'_> {
                          stack array): the closed form was not produced ({why})."
                     ),
                     name: "jacobian_det",
+                    rates: false,
                     ret: self.f().into(),
                     body: MethodBody::Expr(format!("::kinegen::math::{lu}({src})")),
                 }));
@@ -501,7 +485,7 @@ fn transform_literal(coder: &Coder, o: &[String]) -> String {
 }
 
 /// `[[row 0], [row 1], …]` of rows of `n` entries.
-fn rows_literal(o: &[String], n: usize) -> String {
+pub(super) fn rows_literal(o: &[String], n: usize) -> String {
     let rows: Vec<String> = o.chunks(n).map(|r| format!("[{}]", r.join(", "))).collect();
     format!("[{}]", rows.join(", "))
 }

@@ -4,7 +4,7 @@
 
 use crate::chain::Chain;
 use crate::emit::code::Coder;
-use crate::emit::functions::{Const, Item, Method, MethodBody};
+use crate::emit::item::{Const, Item, Method, MethodBody};
 use crate::kinematics::ik::family::Family;
 use crate::kinematics::ik::IkModel;
 use crate::model::robot::{JointKind, TaskRow};
@@ -50,6 +50,7 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
             items.push(Item::Method(Method {
                 doc: format!("Inverse kinematics in closed form: every solution of `pose` (at most {k}).\n\n{derivation}"),
                 name: "ik",
+                rates: false,
                 ret: ty.clone(),
                 body: custom(pose.into(), vec![], format!("self.ik_seeded(pose, &[0.0; {n}])")),
             }));
@@ -60,6 +61,7 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
                       `None` when `pose` is out of reach."
                     .into(),
                 name: "ik_near",
+                rates: false,
                 ret: format!("::core::option::Option<[f64; {n}]>"),
                 body: custom(
                     format!("{pose}, q_current: &[f64; {n}]"),
@@ -77,6 +79,7 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
                     locked + 1
                 ),
                 name: "ik_with",
+                rates: false,
                 ret: ty.clone(),
                 body: custom(
                     format!("{pose}, q_locked: f64"),
@@ -91,6 +94,7 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
                     locked + 1
                 ),
                 name: "ik_near",
+                rates: false,
                 ret: format!("::core::option::Option<[f64; {n}]>"),
                 body: custom(
                     format!("{pose}, q_current: &[f64; {n}]"),
@@ -208,6 +212,7 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     Method {
         doc,
         name: "ik_seeded",
+                rates: false,
         ret: ty.into(),
         body: MethodBody::Custom {
             args,
@@ -256,6 +261,7 @@ fn geometry(chain: &Chain, model: &IkModel) -> Method {
               closed-form solver reads."
             .into(),
         name: "ik_geometry",
+        rates: false,
         ret: format!("::kinegen::ik::geometry::Geometry<{n}>"),
         body: MethodBody::Custom {
             args: String::new(),

@@ -234,8 +234,9 @@ const GREEK: &[&str] = &[
 
 /// A variable name in textbook notation: `c23` → `c_{23}`, `L1` → `L_{1}`,
 /// `s_k1` → `s_{k1}`, `c1_2` → `c_{1,2}` (angle sums of robots with ten or more joints),
-/// `alpha2` → `\alpha_{2}`, `d_bs` → `d_{bs}`, `q` → `q`, and the negated angle sums
-/// of generated code `nc23` → `\bar{c}_{23}` (= −c₂₃).
+/// `alpha2` → `\alpha_{2}`, `d_bs` → `d_{bs}`, `q` → `q`, the joint rates `qd3` →
+/// `\dot{q}_{3}`, and the negated angle sums of generated code `nc23` → `\bar{c}_{23}`
+/// (= −c₂₃).
 pub fn latex_name(name: &str) -> String {
     if let Some(rest) = name.strip_prefix('n') {
         let sum = rest.len() >= 3
@@ -244,6 +245,12 @@ pub fn latex_name(name: &str) -> String {
         if sum {
             let plain = latex_name(rest);
             return format!(r"\bar{{{}}}{}", &plain[..1], &plain[1..]);
+        }
+    }
+    // Joint rates `qd3` are q̇₃.
+    if let Some(j) = name.strip_prefix("qd") {
+        if !j.is_empty() && j.bytes().all(|b| b.is_ascii_digit()) {
+            return format!(r"\dot{{q}}_{{{j}}}");
         }
     }
     // Base: the leading letters; subscript: the rest, without a leading `_`, with
@@ -372,6 +379,8 @@ mod tests {
         assert_eq!(latex_name("L1"), "L_{1}");
         assert_eq!(latex_name("d4"), "d_{4}");
         assert_eq!(latex_name("q3"), "q_{3}");
+        assert_eq!(latex_name("qd3"), r"\dot{q}_{3}");
+        assert_eq!(latex_name("qd_x"), r"\mathrm{qd}_{x}");
         assert_eq!(latex_name("s_k1"), "s_{k1}");
         assert_eq!(latex_name("c1_2_3"), "c_{1,2,3}");
         assert_eq!(latex_name("alpha2"), r"\alpha_{2}");

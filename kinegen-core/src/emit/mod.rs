@@ -3,7 +3,8 @@
 //! - [`code`]: straight-line code as Rust statements (shared `let`s, batched
 //!   `sin_cos_n`, angle-sum names) and operation counts.
 //! - [`functions`]: what the generated type holds — each method's body and doc, the
-//!   constants — as values.
+//!   constants — as values; [`second_order`] its second-order methods.
+//! - [`item`]: a method or a constant of the generated `impl`, as a value.
 //! - [`ik`]: the closed-form IK methods and constants.
 //! - [`docs`], [`formulas`], [`latex`]: the closed forms for people (rustdoc,
 //!   `FORMULAS`, LaTeX).
@@ -14,5 +15,7 @@ pub mod docs;
 pub mod formulas;
 pub mod functions;
 pub mod ik;
+pub mod item;
 pub mod latex;
 pub mod rust;
+pub mod second_order;

@@ -118,7 +118,8 @@ fn has_doc(attrs: &TokenStream) -> bool {
         .is_ok_and(|a| a.iter().any(|a| a.path().is_ident("doc")))
 }
 
-/// `impl Kinematics<N>` and, with task rows, `impl TaskKinematics<N, M>` (f64 only).
+/// `impl Kinematics<N>`, `impl SecondOrderKinematics<N>` and, with task rows,
+/// `impl TaskKinematics<N, M>` (f64 only).
 fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
     let n = chain.dof();
     let mut tr = format!(
@@ -139,6 +140,21 @@ fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
         );
     }
     tr.push_str("}\n");
+    let det_gradient = if functions.det == Some(DetOf::Full) && functions.det_gradient {
+        format!("Some({ident}::det_gradient(self, q))")
+    } else {
+        "{ let _ = q; None }".into()
+    };
+    let _ = writeln!(
+        tr,
+        "impl ::kinegen::SecondOrderKinematics<{n}> for {ident} {{\n\
+         #[inline] fn hessian(&self, q: &[f64; {n}]) -> [[[f64; {n}]; 6]; {n}] {{ {ident}::hessian(self, q) }}\n\
+         #[inline] fn jacobian_dot(&self, q: &[f64; {n}], qd: &[f64; {n}]) -> [[f64; {n}]; 6] {{ {ident}::jacobian_dot(self, q, qd) }}\n\
+         #[inline] fn jdot_qdot(&self, q: &[f64; {n}], qd: &[f64; {n}]) -> [f64; 6] {{ {ident}::jdot_qdot(self, q, qd) }}\n\
+         #[inline] fn jacobian_ee_dot(&self, q: &[f64; {n}], qd: &[f64; {n}]) -> [[f64; {n}]; 6] {{ {ident}::jacobian_ee_dot(self, q, qd) }}\n\
+         #[inline] fn manipulability_gradient(&self, q: &[f64; {n}]) -> [f64; {n}] {{ {ident}::manipulability_gradient(self, q) }}\n\
+         #[inline] fn det_gradient(&self, q: &[f64; {n}]) -> Option<[f64; {n}]> {{ {det_gradient} }}\n}}"
+    );
     if let Some(task) = &chain.task {
         let m = task.len();
         let rows: Vec<String> = task.iter().map(|r| r.index().to_string()).collect();
@@ -205,15 +221,21 @@ fn method(out: &mut String, m: &Method, qty: &str) {
     let Method {
         doc,
         name,
+        rates,
         ret,
         body,
     } = m;
+    let (args, unused) = if *rates {
+        (format!("q: {qty}, qd: {qty}"), "(q, qd)")
+    } else {
+        (format!("q: {qty}"), "q")
+    };
     match body {
         MethodBody::Code { body, result } => {
             doc_lines(out, doc);
             let _ = writeln!(
                 out,
-                "#[inline]\n#[must_use]\npub fn {name}(&self, q: {qty}) -> {ret} {{\nlet _ = q;\n{}\n{result}\n}}",
+                "#[inline]\n#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\nlet _ = {unused};\n{}\n{result}\n}}",
                 body.lets.join("\n"),
             );
         }
@@ -226,9 +248,10 @@ fn method(out: &mut String, m: &Method, qty: &str) {
             );
         }
         MethodBody::Expr(e) => {
+            doc_lines(out, doc);
             let _ = writeln!(
                 out,
-                "/// {doc}\n#[inline]\n#[must_use]\npub fn {name}(&self, q: {qty}) -> {ret} {{ {e} }}"
+                "#[inline]\n#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{ {e} }}"
             );
         }
     }

@@ -27,6 +27,9 @@ pub struct SymbolicChain {
     pub joint_vars: Vec<(usize, Var)>,
     /// Ring variables of named parameters: `(name, var)`.
     pub param_vars: Vec<(String, Var)>,
+    /// Ring variables of joint rates `q̇_j`: `(joint, var)`, made by the outputs that
+    /// read them ([`SymbolicChain::rates`]).
+    pub rate_vars: Vec<(usize, Var)>,
     /// `base · A1 ⋯ Ai` for i = 1..=N.
     pub frames: Vec<Transform>,
     /// The base frame (frame 0).
@@ -169,6 +172,7 @@ impl SymbolicChain {
             angles: b.angles,
             joint_vars: b.joint_vars,
             param_vars: b.param_vars,
+            rate_vars: Vec::new(),
             frames,
             base,
             tool,
@@ -179,15 +183,36 @@ impl SymbolicChain {
 }
 
 impl SymbolicChain {
+    /// The joint rates `q̇_1 … q̇_N` as leaves (`qd1`, …), made on first use.
+    pub fn rates(&mut self, n: usize) -> Vec<Id> {
+        (0..n)
+            .map(|j| {
+                let v = self.graph.ring.rate(j, &format!("qd{}", j + 1));
+                if !self.rate_vars.iter().any(|&(_, w)| w == v) {
+                    self.rate_vars.push((j, v));
+                }
+                self.graph.leaf(v)
+            })
+            .collect()
+    }
+
     /// Values of the ring's variables at joint values `q` with the chain's parameters:
     /// what the generated code computes before its first operation. Used to evaluate
-    /// the symbolic outputs directly (tests, the CLI's `eval`).
+    /// the symbolic outputs directly (tests, the CLI's `eval`). Joint rates are NaN (see
+    /// [`SymbolicChain::variables_with_rates`]).
     pub fn variables(&self, chain: &Chain, q: &[f64]) -> Vec<f64> {
+        self.variables_with_rates(chain, q, None)
+    }
+
+    /// [`SymbolicChain::variables`] with joint rates `qd` for the outputs that read them
+    /// (`None`: NaN, so a rate-dependent value cannot pass for a number).
+    pub fn variables_with_rates(&self, chain: &Chain, q: &[f64], qd: Option<&[f64]>) -> Vec<f64> {
         let ring = &self.graph.ring;
         let mut vals = vec![f64::NAN; ring.len()];
         for (v, slot) in vals.iter_mut().enumerate() {
             *slot = match ring.kind(v as u32) {
                 VarKind::Joint(j) => q[*j],
+                VarKind::Rate(j) => qd.map_or(f64::NAN, |qd| qd[*j]),
                 VarKind::Param(n) => chain.param_value(n),
                 VarKind::Sqrt(k) => (*k as f64).sqrt(),
                 VarKind::Sin(_) | VarKind::Cos(_) => continue,
@@ -210,10 +235,20 @@ impl SymbolicChain {
 
     /// Evaluate nodes at `q`.
     pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
-        let vals = self.variables(chain, q);
-        ids.iter()
-            .map(|&id| self.graph.eval(id, &|v| vals[v as usize]))
-            .collect()
+        self.eval_with_rates(chain, q, None, ids)
+    }
+
+    /// Evaluate nodes at `q` and joint rates `qd` (`None`: rates are NaN), sharing the
+    /// values of common intermediates between them.
+    pub fn eval_with_rates(
+        &self,
+        chain: &Chain,
+        q: &[f64],
+        qd: Option<&[f64]>,
+        ids: &[Id],
+    ) -> Vec<f64> {
+        let vals = self.variables_with_rates(chain, q, qd);
+        self.graph.eval_all(ids, &|v| vals[v as usize])
     }
 }
 

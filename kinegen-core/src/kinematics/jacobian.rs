@@ -5,20 +5,124 @@
 use crate::algebra::graph::{Graph, Id};
 use crate::chain::Chain;
 use crate::kinematics::frames::{Pivot, SymbolicChain};
-use crate::kinematics::transform::{cross, rotate, Transform};
+use crate::kinematics::transform::{cross, rotate, rotate_back, Transform};
 use crate::model::robot::JointKind;
 
 /// A 6×N matrix of nodes, row-major (`rows[r][joint]`), rows `[vx vy vz ωx ωy ωz]`.
 pub type Rows = Vec<Vec<Id>>;
 
-/// The geometric Jacobian of the tool point in the world frame.
+/// One column of a Jacobian: what a unit rate of the joint adds to the tool point's
+/// linear velocity (`lin`) and to the tool frame's angular velocity (`ang`, zero for a
+/// prismatic joint).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Column {
+    /// `[vx vy vz]`.
+    pub lin: [Id; 3],
+    /// `[ωx ωy ωz]`.
+    pub ang: [Id; 3],
+}
+
+/// The columns of a 6×N matrix.
+pub fn columns(rows: &Rows) -> Vec<Column> {
+    let n = rows.first().map_or(0, Vec::len);
+    (0..n)
+        .map(|i| Column {
+            lin: [rows[0][i], rows[1][i], rows[2][i]],
+            ang: [rows[3][i], rows[4][i], rows[5][i]],
+        })
+        .collect()
+}
+
+/// A 6×N matrix from its columns.
+pub fn from_columns(cols: &[Column]) -> Rows {
+    (0..6)
+        .map(|r| {
+            cols.iter()
+                .map(|c| if r < 3 { c.lin[r] } else { c.ang[r - 3] })
+                .collect()
+        })
+        .collect()
+}
+
+/// The Jacobian columns of the joints after a middle frame `k`, in frame `k`'s
+/// coordinates, as [`geometric`] formed them before rotating them out: what an output
+/// that is covariant under rotations (`J̇ q̇`) can be computed from in that frame.
+#[derive(Clone, Debug)]
+pub struct LocalColumns {
+    /// `k`: the columns are those of joints `k..N` (0-based).
+    pub k: usize,
+    /// Frame `k` in world coordinates (`R_k`, `p_k`).
+    pub frame: Transform,
+    /// Columns of joints `k..N` in frame `k`.
+    pub columns: Vec<Column>,
+    /// The tool point in frame `k`.
+    pub tool: [Id; 3],
+}
+
+impl LocalColumns {
+    /// Every column of the Jacobian in frame `k`: those of joints `k..N` as built, those
+    /// of the joints before `k` from their axes (`sym.axes`, world) expressed in frame
+    /// `k` — `z' = R_kᵀ z`, `o' = R_kᵀ (o − p_k)`, `[z' × (p' − o'); z']` with `p'` the
+    /// tool point in frame `k` — so that none of them is a rotated world column.
+    pub fn all(&self, chain: &Chain, sym: &mut SymbolicChain) -> Vec<Column> {
+        let frame = self.frame;
+        let g = &mut sym.graph;
+        let zero = g.int(0);
+        let mut cols: Vec<Column> = chain
+            .kinds()
+            .zip(&sym.axes)
+            .take(self.k)
+            .map(|(kind, &(z, o))| {
+                let z = rotate_back(g, &frame, z);
+                match kind {
+                    JointKind::Revolute => {
+                        let d = [
+                            g.sub(o[0], frame.p[0]),
+                            g.sub(o[1], frame.p[1]),
+                            g.sub(o[2], frame.p[2]),
+                        ];
+                        let o = rotate_back(g, &frame, d);
+                        let r = [
+                            g.sub(self.tool[0], o[0]),
+                            g.sub(self.tool[1], o[1]),
+                            g.sub(self.tool[2], o[2]),
+                        ];
+                        Column {
+                            lin: cross(g, z, r),
+                            ang: z,
+                        }
+                    }
+                    JointKind::Prismatic => Column {
+                        lin: z,
+                        ang: [zero; 3],
+                    },
+                }
+            })
+            .collect();
+        cols.extend_from_slice(&self.columns);
+        cols
+    }
+}
+
+/// The geometric Jacobian of the tool point in the world frame, and (with a middle
+/// frame) the columns it was rotated from.
 ///
 /// With a [`Pivot`] the columns of joints after frame `k` are formed in frame `k`
 /// (fewer joints in every product) and rotated into the world frame at the end.
-pub fn geometric(chain: &Chain, sym: &mut SymbolicChain, pivot: Option<&Pivot>) -> Rows {
+pub fn geometric(
+    chain: &Chain,
+    sym: &mut SymbolicChain,
+    pivot: Option<&Pivot>,
+) -> (Rows, Option<LocalColumns>) {
     let n = chain.dof();
     let zero = sym.graph.int(0);
     let mut rows = vec![vec![zero; n]; 6];
+    let mut local_columns = pivot.map(|pv| LocalColumns {
+        k: pv.k,
+        frame: pv.frame,
+        columns: Vec::new(),
+        tool: pv.tool.p,
+    });
     for (i, kind) in chain.kinds().enumerate() {
         let local = pivot.filter(|pv| i >= pv.k);
         let (z, o, p) = match local {
@@ -34,6 +138,9 @@ pub fn geometric(chain: &Chain, sym: &mut SymbolicChain, pivot: Option<&Pivot>) 
             JointKind::Prismatic => (z, [zero; 3]),
         };
         if let Some(pv) = local {
+            if let Some(lc) = local_columns.as_mut() {
+                lc.columns.push(Column { lin, ang });
+            }
             lin = rotate(g, &pv.frame, lin);
             ang = rotate(g, &pv.frame, ang);
         }
@@ -42,7 +149,7 @@ pub fn geometric(chain: &Chain, sym: &mut SymbolicChain, pivot: Option<&Pivot>) 
             rows[k + 3][i] = ang[k];
         }
     }
-    rows
+    (rows, local_columns)
 }
 
 /// `diag(Rᵀ, Rᵀ) · J`: the same Jacobian expressed in the frame `t` (the tool frame).

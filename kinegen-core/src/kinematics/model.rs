@@ -8,7 +8,7 @@
 use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
-use crate::kinematics::jacobian::{self, Rows};
+use crate::kinematics::jacobian::{self, LocalColumns, Rows};
 use crate::kinematics::transform::Transform;
 use crate::model::options::Deadline;
 use crate::simplify::polish::Report;
@@ -28,6 +28,9 @@ pub struct Model {
     pub jacobian_ee: Rows,
     /// Task Jacobian rows (empty without task rows).
     pub task: Rows,
+    /// With a middle frame: the Jacobian columns of the joints after it, in its
+    /// coordinates, as built (not simplified; see [`LocalColumns`]).
+    pub local: Option<LocalColumns>,
     /// The tool pose's 12 entries then the Jacobian's, row-major, for the fused
     /// `fk_and_jacobian` (same values as `fk_rows` and `jacobian`; the sign pass
     /// chooses their signs for the two together).
@@ -51,7 +54,7 @@ impl Model {
         let (mut sym, pivot) = SymbolicChain::build(chain, max_terms, pivot, deadline);
         let fk_rows = sym.tool.rows();
         let frame_rows = sym.frames.iter().map(Transform::rows).collect();
-        let jacobian = jacobian::geometric(chain, &mut sym, pivot.as_ref());
+        let (jacobian, local) = jacobian::geometric(chain, &mut sym, pivot.as_ref());
         let tool = sym.tool;
         let jacobian_ee = jacobian::rotate_into(&mut sym.graph, &tool, &jacobian);
         let task = chain
@@ -66,6 +69,7 @@ impl Model {
             jacobian,
             jacobian_ee,
             task,
+            local,
             fused: Vec::new(),
             notes: Vec::new(),
             polish: Report::default(),
@@ -180,5 +184,17 @@ impl Model {
     /// Evaluate nodes at `q`.
     pub fn eval(&self, chain: &Chain, q: &[f64], ids: &[Id]) -> Vec<f64> {
         self.sym.eval(chain, q, ids)
+    }
+
+    /// Evaluate nodes at `q` and joint rates `qd` (`None`: rates are NaN; see
+    /// [`SymbolicChain::eval_with_rates`]).
+    pub fn eval_with_rates(
+        &self,
+        chain: &Chain,
+        q: &[f64],
+        qd: Option<&[f64]>,
+        ids: &[Id],
+    ) -> Vec<f64> {
+        self.sym.eval_with_rates(chain, q, qd, ids)
     }
 }

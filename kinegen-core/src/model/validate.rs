@@ -66,6 +66,15 @@ pub fn param_name_problem(name: &str) -> Option<String> {
             "`{name}` is the name of a joint variable; choose another parameter name"
         ));
     }
+    if name
+        .strip_prefix("qd")
+        .is_some_and(|j| j.bytes().all(|b| b.is_ascii_digit()))
+    {
+        return Some(format!(
+            "`{name}` is the name of the joint rates (`qd`, `qd1`, …); choose another \
+             parameter name"
+        ));
+    }
     if is_rust_keyword(name) {
         return Some(format!(
             "`{name}` is a Rust keyword; choose another parameter name"

@@ -453,6 +453,158 @@ impl NumericRobot {
         Ok(j)
     }
 
+    /// Joint axes `z_i` and points `o_i` on them (world frame), and the tool point `p`:
+    /// what [`jacobian`](Self::jacobian) builds its columns from (a flipped joint's axis
+    /// is `−z`, which its positive rate turns about).
+    fn axes(&self, q: &[f64]) -> Result<(Vec<Axis>, Vector3<f64>), NumericError> {
+        let frames = self.frames(q)?;
+        let p = position(&(frames.last().copied().unwrap_or(self.base) * self.tool));
+        let axes = (0..self.dof())
+            .map(|i| {
+                let f = match self.convention {
+                    Convention::Standard if i == 0 => self.base,
+                    Convention::Standard => frames[i - 1],
+                    Convention::Modified => frames[i],
+                };
+                let z: Vector3<f64> = f.fixed_view::<3, 1>(0, 2).into_owned();
+                let z = if self.joints[i].flip { -z } else { z };
+                (z, position(&f))
+            })
+            .collect();
+        Ok((axes, p))
+    }
+
+    /// The kinematic Hessian `H[j] = ∂J/∂q_j` (world frame), the textbook way: with `z`
+    /// the joint axes, `o` points on them and `p` the tool point, for a revolute joint `j`
+    /// and `j ≤ i` column `i` of `H[j]` is `[z_j × (z_i × (p − o_i)); z_j × z_i]` (prismatic
+    /// `i`: `[z_j × z_i; 0]`), for `j > i` it is `[z_i × v_j; 0]` with `v_j` column `j`'s
+    /// linear part; a prismatic joint `j` moves axes without turning them, so it changes
+    /// only the columns of the revolute joints before it (`[z_i × z_j; 0]`).
+    pub fn hessian(&self, q: &[f64]) -> Result<Vec<Jacobian>, NumericError> {
+        let (axes, p) = self.axes(q)?;
+        let n = self.dof();
+        let revolute = |i: usize| self.joints[i].kind == JointKind::Revolute;
+        // Linear part of column i.
+        let v = |i: usize| {
+            let (z, o) = axes[i];
+            if revolute(i) {
+                z.cross(&(p - o))
+            } else {
+                z
+            }
+        };
+        let mut h = vec![Jacobian::zeros(n); n];
+        for (j, hj) in h.iter_mut().enumerate() {
+            for i in 0..n {
+                let (zi, zj) = (axes[i].0, axes[j].0);
+                let (lin, ang) = if j <= i {
+                    if !revolute(j) {
+                        (Vector3::zeros(), Vector3::zeros())
+                    } else if revolute(i) {
+                        (zj.cross(&v(i)), zj.cross(&zi))
+                    } else {
+                        (zj.cross(&zi), Vector3::zeros())
+                    }
+                } else if revolute(i) {
+                    (zi.cross(&v(j)), Vector3::zeros())
+                } else {
+                    (Vector3::zeros(), Vector3::zeros())
+                };
+                hj.fixed_view_mut::<3, 1>(0, i).copy_from(&lin);
+                hj.fixed_view_mut::<3, 1>(3, i).copy_from(&ang);
+            }
+        }
+        Ok(h)
+    }
+
+    /// The Hessian by central differences of [`jacobian`](Self::jacobian):
+    /// `H[j] ≈ (J(q + h e_j) − J(q − h e_j)) / 2h`.
+    pub fn hessian_fd(&self, q: &[f64], h: f64) -> Result<Vec<Jacobian>, NumericError> {
+        self.check(q)?;
+        if !(h.is_finite() && h > 0.0) {
+            return Err(NumericError::BadStep(h));
+        }
+        let mut qp = q.to_vec();
+        (0..self.dof())
+            .map(|j| {
+                qp[j] = q[j] + h;
+                let plus = self.jacobian(&qp)?;
+                qp[j] = q[j] - h;
+                let minus = self.jacobian(&qp)?;
+                qp[j] = q[j];
+                Ok((plus - minus) / (2.0 * h))
+            })
+            .collect()
+    }
+
+    /// `J̇` along the joint rates `qd` by central differences in time of
+    /// [`jacobian`](Self::jacobian) along `q + t·q̇`: `(J(q + h q̇) − J(q − h q̇)) / 2h`.
+    pub fn jacobian_dot_fd(&self, q: &[f64], qd: &[f64], h: f64) -> Result<Jacobian, NumericError> {
+        self.along(q, qd, h, &|q| self.jacobian(q))
+    }
+
+    /// `d/dt` of [`jacobian_ee`](Self::jacobian_ee) along `qd`, by central differences in
+    /// time.
+    pub fn jacobian_ee_dot_fd(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        h: f64,
+    ) -> Result<Jacobian, NumericError> {
+        self.along(q, qd, h, &|q| self.jacobian_ee(q))
+    }
+
+    fn along(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        h: f64,
+        f: &dyn Fn(&[f64]) -> Result<Jacobian, NumericError>,
+    ) -> Result<Jacobian, NumericError> {
+        self.check(q)?;
+        self.check(qd)?;
+        if !(h.is_finite() && h > 0.0) {
+            return Err(NumericError::BadStep(h));
+        }
+        let at = |t: f64| -> Vec<f64> { q.iter().zip(qd).map(|(x, v)| x + t * v).collect() };
+        Ok((f(&at(h))? - f(&at(-h))?) / (2.0 * h))
+    }
+
+    /// The bias acceleration `J̇ q̇` by recursive velocity and acceleration propagation
+    /// from the base (Craig §6.7, outward iterations with `q̈ = 0`): each frame carries its
+    /// link's angular velocity `ω` and acceleration `α` and its origin's velocity `v` and
+    /// acceleration `a`, in its own coordinates. Across a transform `(R, p)` (fixed in the
+    /// link): `ω' = Rᵀ ω`, `α' = Rᵀ α`, `v' = Rᵀ (v + ω × p)`,
+    /// `a' = Rᵀ (a + α × p + ω × (ω × p))`. At a revolute joint turning about the local z
+    /// at rate `q̇`: `α += ω × q̇ẑ`, then `ω += q̇ẑ`; at a prismatic one sliding along it:
+    /// `a += 2 ω × q̇ẑ` (Coriolis), then `v += q̇ẑ`. Rows `[a; α]` of the tool point and
+    /// frame, rotated into the world frame.
+    pub fn jdot_qdot_propagation(&self, q: &[f64], qd: &[f64]) -> Result<[f64; 6], NumericError> {
+        self.check(q)?;
+        self.check(qd)?;
+        let mut m = Motion::default();
+        for (i, joint) in self.joints.iter().enumerate() {
+            let (theta, d) = joint.theta_d(q[i]);
+            // A flipped joint moves about −z at rate q̇: about z at −q̇.
+            let rate = if joint.flip { -qd[i] } else { qd[i] };
+            match self.convention {
+                Convention::Standard => {
+                    m.actuate(joint.kind, rate);
+                    m.carry(&self.link(i, q[i]));
+                }
+                Convention::Modified => {
+                    m.carry(&(rot_x(joint.alpha) * trans(joint.a, 0.0, 0.0)));
+                    m.actuate(joint.kind, rate);
+                    m.carry(&(rot_z(theta) * trans(0.0, 0.0, d)));
+                }
+            }
+        }
+        m.carry(&self.tool);
+        let r = rotation(&self.fk(q)?);
+        let (a, alpha) = (r * m.a, r * m.alpha);
+        Ok([a[0], a[1], a[2], alpha[0], alpha[1], alpha[2]])
+    }
+
     /// The rows of [`jacobian`](Self::jacobian) named by the robot's task (all six if none).
     pub fn task_jacobian(&self, q: &[f64]) -> Result<DMatrix<f64>, NumericError> {
         let j = self.jacobian(q)?;
@@ -463,6 +615,49 @@ impl NumericRobot {
         Ok(DMatrix::from_fn(rows.len(), self.dof(), |r, c| {
             j[(rows[r], c)]
         }))
+    }
+}
+
+/// A joint axis (unit vector) and a point on it.
+type Axis = (Vector3<f64>, Vector3<f64>);
+
+/// Velocities and accelerations of a frame moving with the chain, in its own coordinates.
+#[derive(Clone, Copy, Debug, Default)]
+struct Motion {
+    /// Angular velocity of the link.
+    w: Vector3<f64>,
+    /// Angular acceleration of the link.
+    alpha: Vector3<f64>,
+    /// Velocity of the origin.
+    v: Vector3<f64>,
+    /// Acceleration of the origin.
+    a: Vector3<f64>,
+}
+
+impl Motion {
+    /// Into the frame `t` (fixed in the current link) away from the current origin.
+    fn carry(&mut self, t: &Matrix4<f64>) {
+        let (rt, p) = (rotation(t).transpose(), position(t));
+        let wp = self.w.cross(&p);
+        self.a = rt * (self.a + self.alpha.cross(&p) + self.w.cross(&wp));
+        self.v = rt * (self.v + wp);
+        self.w = rt * self.w;
+        self.alpha = rt * self.alpha;
+    }
+
+    /// A joint moving about (revolute) or along (prismatic) the local z at rate `rate`.
+    fn actuate(&mut self, kind: JointKind, rate: f64) {
+        let z = Vector3::new(0.0, 0.0, rate);
+        match kind {
+            JointKind::Revolute => {
+                self.alpha += self.w.cross(&z);
+                self.w += z;
+            }
+            JointKind::Prismatic => {
+                self.a += 2.0 * self.w.cross(&z);
+                self.v += z;
+            }
+        }
     }
 }
 
@@ -498,6 +693,22 @@ pub fn manipulability(j: &DMatrix<f64>) -> f64 {
     }
     let sv = j.clone().svd(false, false).singular_values;
     sv.iter().take(m).product()
+}
+
+/// The gradient of [`manipulability`] from the Jacobian `j` (M×N) and its Hessian `h`
+/// (`h[k] = ∂J/∂q_k`, same rows): `∂w/∂q_k = w · tr(J⁺ H_k)`, with nalgebra's SVD for `w`
+/// and the pseudo-inverse `J⁺`. Zero where `w` is (below `1e-300`: not differentiable;
+/// identically for a tall `j`).
+pub fn manipulability_gradient(j: &DMatrix<f64>, h: &[DMatrix<f64>]) -> Vec<f64> {
+    let w = manipulability(j);
+    if w < 1e-300 {
+        return vec![0.0; h.len()];
+    }
+    let pinv = j
+        .clone()
+        .pseudo_inverse(0.0)
+        .unwrap_or_else(|_| DMatrix::zeros(j.ncols(), j.nrows()));
+    h.iter().map(|hk| w * (&pinv * hk).trace()).collect()
 }
 
 /// [`manipulability`] of a 6×N Jacobian.

@@ -22,6 +22,9 @@ pub struct DetModel {
     pub rows: Vec<usize>,
     /// `constant · Π factors`.
     pub factored: Factored,
+    /// Constant `√k` factors taken out of `factored` (ring variables; the determinant
+    /// is `constant · Π surds · Π factors`).
+    pub surds: Vec<crate::algebra::poly::Var>,
     /// Distinct nonconstant factors with multiplicity, their node, text and LaTeX.
     pub factors: Vec<DetFactor>,
     /// The whole determinant.
@@ -114,6 +117,7 @@ pub fn determinant(chain: &Chain, model: &mut Model) -> Result<DetModel, String>
     Ok(DetModel {
         rows,
         factored,
+        surds,
         factors,
         node,
         text,
@@ -172,7 +176,7 @@ fn factor(model: &mut Model, factored: &mut Factored, poly: Poly, power: u32) ->
 }
 
 /// `Σ coef · rest · Π sin/cos(angle sum)` as code.
-fn trig_node(model: &mut Model, terms: &[TrigTerm]) -> Id {
+pub(crate) fn trig_node(model: &mut Model, terms: &[TrigTerm]) -> Id {
     let sym = &mut model.sym;
     let g = &mut sym.graph;
     let mut acc = Vec::new();

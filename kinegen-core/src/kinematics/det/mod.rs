@@ -3,6 +3,8 @@
 //! - [`structural`]: the determinant in a well-chosen frame about a well-chosen point,
 //!   taken by structure (single entries split off, memoised Laplace) and factored.
 //! - [`closed_form`]: its factors read back as trigonometry, as code, checked.
+//! - [`gradient`]: `∂det/∂q` and the singular factors' gradients, differentiated exactly.
 
 pub mod closed_form;
+pub mod gradient;
 pub mod structural;
