@@ -20,6 +20,10 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::hint::black_box;
 
+#[path = "common/ik.rs"]
+mod ik_common;
+use ik_common::{miss, poses, same};
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use kinegen::ik::{solve, solve_nearest, IkOptions, IkTarget, MultiStart, XorShift64};
 use kinegen::Kinematics;
@@ -38,18 +42,6 @@ fn poses_count() -> usize {
     } else {
         50
     }
-}
-
-/// Poses of configurations within the limits, and the configurations.
-fn poses<R: Kinematics<6>>(robot: &R, seed: u64) -> Vec<([[f64; 4]; 4], [f64; 6])> {
-    let limits = robot.limits();
-    let mut rng = XorShift64::new(seed);
-    (0..poses_count())
-        .map(|_| {
-            let q = rng.configuration(&limits);
-            (robot.fk(&q), q)
-        })
-        .collect()
 }
 
 /// The PUMA 560 of `robots/puma560.toml` in OPW form. Found by a search over OPW's sign
@@ -89,22 +81,6 @@ fn to_opw(t: &[[f64; 4]; 4]) -> OpwPose {
         DVec3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]),
         DQuat::from_mat3(&r),
     )
-}
-
-/// `max |fk(q) − pose|` over the top three rows.
-fn miss<R: Kinematics<6>>(robot: &R, q: &[f64; 6], pose: &[[f64; 4]; 4]) -> f64 {
-    let t = robot.fk(q);
-    (0..3)
-        .flat_map(|r| (0..4).map(move |c| (r, c)))
-        .map(|(r, c)| (t[r][c] - pose[r][c]).abs())
-        .fold(0.0, f64::max)
-}
-
-fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
-    a.iter().zip(b).all(|(x, y)| {
-        let d = x - y;
-        (d - 2.0 * PI * (d / (2.0 * PI)).round()).abs() < 1e-6
-    })
 }
 
 fn check_opw_fk(set: &[([[f64; 4]; 4], [f64; 6])]) {
@@ -161,8 +137,8 @@ impl Tally {
 fn report() {
     let ur5 = Ur5::default();
     let puma = Puma560::default();
-    let ur5_set = poses(&ur5, 2026);
-    let puma_set = poses(&puma, 2026);
+    let ur5_set = poses(&ur5, 2026, poses_count());
+    let puma_set = poses(&puma, 2026, poses_count());
     check_opw_fk(&puma_set);
     let opw = opw_puma();
     let mut t = [Tally::default(), Tally::default(), Tally::default()];
@@ -213,8 +189,8 @@ fn bench(c: &mut Criterion) {
     report();
     let ur5 = Ur5::default();
     let puma = Puma560::default();
-    let ur5_set = poses(&ur5, 2026);
-    let puma_set = poses(&puma, 2026);
+    let ur5_set = poses(&ur5, 2026, poses_count());
+    let puma_set = poses(&puma, 2026, poses_count());
     let opw = opw_puma();
     let opw_poses: Vec<OpwPose> = puma_set.iter().map(|(p, _)| to_opw(p)).collect();
     let mut g = c.benchmark_group("ik_all_solutions_1000_poses");

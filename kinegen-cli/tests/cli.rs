@@ -1,50 +1,11 @@
 //! Real invocations of the `kinegen` binary.
 
-use std::path::PathBuf;
-
-use assert_cmd::Command;
 use kinegen_core::{front::toml_file, generate, numeric, ItemHeader};
 use predicates::prelude::*;
 use serde_json::Value;
 
-fn kinegen() -> Command {
-    Command::cargo_bin("kinegen").unwrap()
-}
-
-fn robot_file(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../robots")
-        .join(format!("{name}.toml"))
-}
-
-fn stdout(args: &[&str]) -> String {
-    let out = kinegen()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    String::from_utf8(out).unwrap()
-}
-
-/// A failing invocation: exit 2, nothing on stdout, one `kinegen: error:` line on stderr
-/// (returned), and no panic.
-fn fails(args: &[&str]) -> String {
-    let out = kinegen()
-        .args(args)
-        .assert()
-        .code(2)
-        .stdout("")
-        .get_output()
-        .stderr
-        .clone();
-    let err = String::from_utf8(out).unwrap();
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.starts_with("kinegen: error: "), "{err}");
-    err
-}
+mod common;
+use common::{fails, kinegen, robot_file, stdout};
 
 #[test]
 fn show_planar_rr() {

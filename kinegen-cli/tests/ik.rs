@@ -5,49 +5,13 @@
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
-use assert_cmd::Command;
 use kinegen_core::front::toml_file;
 use kinegen_core::model::robot::JointKind;
 use kinegen_core::numeric::NumericRobot;
 use serde_json::Value;
 
-fn kinegen() -> Command {
-    Command::cargo_bin("kinegen").unwrap()
-}
-
-fn robot_file(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../robots")
-        .join(format!("{name}.toml"))
-}
-
-fn stdout(args: &[&str]) -> String {
-    let out = kinegen()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    String::from_utf8(out).unwrap()
-}
-
-/// Exit 2, one `kinegen: error:` line, no panic; the line is returned.
-fn fails(args: &[&str]) -> String {
-    let out = kinegen()
-        .args(args)
-        .assert()
-        .code(2)
-        .stdout("")
-        .get_output()
-        .stderr
-        .clone();
-    let err = String::from_utf8(out).unwrap();
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.starts_with("kinegen: error: "), "{err}");
-    err
-}
+mod common;
+use common::{fails, robot_file, stdout};
 
 /// A fixed-seed generator (SplitMix64): the same configurations on every run.
 struct Rng(u64);

@@ -11,8 +11,11 @@
 //!
 //! Run (needs CMake for NLopt): `cargo bench --manifest-path benches/ik-geo/Cargo.toml`.
 
-use std::f64::consts::PI;
 use std::hint::black_box;
+
+#[path = "../../common/ik.rs"]
+mod ik_common;
+use ik_common::{miss, poses, same};
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ik_geo::nalgebra::{Matrix3, Matrix3x6, SMatrix, Vector3, Vector6};
@@ -20,22 +23,10 @@ use ik_geo::nalgebra::{Matrix3, Matrix3x6, SMatrix, Vector3, Vector6};
 type Matrix3x7 = SMatrix<f64, 3, 7>;
 use ik_geo::robot::{spherical_two_parallel, three_parallel_two_intersecting, IKSolver, Robot};
 use kinegen::ik::geometry::Geometry;
-use kinegen::ik::XorShift64;
 use kinegen::Kinematics;
 use kinegen_robots::{Puma560, Ur5};
 
 const POSES: usize = 1000;
-
-fn poses<R: Kinematics<6>>(robot: &R, seed: u64) -> Vec<([[f64; 4]; 4], [f64; 6])> {
-    let limits = robot.limits();
-    let mut rng = XorShift64::new(seed);
-    (0..POSES)
-        .map(|_| {
-            let q = rng.configuration(&limits);
-            (robot.fk(&q), q)
-        })
-        .collect()
-}
 
 /// kinegen's zero-configuration geometry as ik-geo's (H, P): P₀ = p₁, Pᵢ = pᵢ₊₁ − pᵢ,
 /// P₆ = p_tool − p₆. ik-geo's fk has no tool rotation: its R is kinegen's R · R_toolᵀ.
@@ -69,21 +60,6 @@ fn target(g: &Geometry<6>, pose: &[[f64; 4]; 4]) -> (Matrix3<f64>, Vector3<f64>)
         r * rt.transpose(),
         Vector3::new(pose[0][3], pose[1][3], pose[2][3]),
     )
-}
-
-fn miss<R: Kinematics<6>>(robot: &R, q: &[f64; 6], pose: &[[f64; 4]; 4]) -> f64 {
-    let t = robot.fk(q);
-    (0..3)
-        .flat_map(|r| (0..4).map(move |c| (r, c)))
-        .map(|(r, c)| (t[r][c] - pose[r][c]).abs())
-        .fold(0.0, f64::max)
-}
-
-fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
-    a.iter().zip(b).all(|(x, y)| {
-        let d = x - y;
-        (d - 2.0 * PI * (d / (2.0 * PI)).round()).abs() < 1e-6
-    })
 }
 
 fn check_fk(name: &str, robot: &Robot, g: &Geometry<6>, set: &[([[f64; 4]; 4], [f64; 6])]) {
@@ -141,8 +117,8 @@ fn bench(c: &mut Criterion) {
     let (hp, pp) = poe(&gp, true);
     let geo_ur5 = three_parallel_two_intersecting(hu, pu);
     let geo_puma = spherical_two_parallel(hp, pp);
-    let ur5_set = poses(&ur5, 2026);
-    let puma_set = poses(&puma, 2026);
+    let ur5_set = poses(&ur5, 2026, POSES);
+    let puma_set = poses(&puma, 2026, POSES);
     report(
         "UR5     ",
         &ur5,
