@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
+use kinegen::ik::XorShift64;
 use kinegen_core::front::toml_file;
 use kinegen_core::model::robot::JointKind;
 use kinegen_core::numeric::NumericRobot;
@@ -12,18 +13,6 @@ use serde_json::Value;
 
 mod common;
 use common::{fails, robot_file, stdout};
-
-/// A fixed-seed generator (SplitMix64): the same configurations on every run.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 fn tmp(name: &str, value: &Value) -> PathBuf {
     let path = std::env::temp_dir().join(format!("kinegen-ik-{}-{name}.json", std::process::id()));
@@ -70,7 +59,7 @@ fn every_solution_reaches_the_pose_and_the_source_is_among_them() {
         let (robot, _) = toml_file::load_file(&robot_file(name)).unwrap();
         let reference = NumericRobot::new(&robot).unwrap();
         let n = robot.dof();
-        let mut rng = Rng(0x1234_5678 ^ n as u64);
+        let mut rng = XorShift64::new(0x1234_5678 ^ n as u64);
         let mut qs = Vec::new();
         let mut poses = Vec::new();
         for _ in 0..40 {
@@ -78,13 +67,13 @@ fn every_solution_reaches_the_pose_and_the_source_is_among_them() {
                 .joints
                 .iter()
                 .map(|j| match (j.kind, j.limits) {
-                    (JointKind::Prismatic, Some([lo, hi])) => lo + (hi - lo) * rng.next(),
-                    (JointKind::Prismatic, None) => 0.1 + 0.5 * rng.next(),
+                    (JointKind::Prismatic, Some([lo, hi])) => lo + (hi - lo) * rng.next_f64(),
+                    (JointKind::Prismatic, None) => 0.1 + 0.5 * rng.next_f64(),
                     (JointKind::Revolute, limits) => {
                         // Inside the limits: `near` prefers solutions within them.
                         let [lo, hi] = limits.unwrap_or([-PI, PI]);
                         let (lo, hi) = (lo.max(-PI), hi.min(PI));
-                        lo + (hi - lo) * rng.next()
+                        lo + (hi - lo) * rng.next_f64()
                     }
                 })
                 .collect();

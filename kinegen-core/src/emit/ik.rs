@@ -108,21 +108,11 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
         }
     }
     items.push(Item::Method(geometry(chain, model)));
-    let revolute: Vec<&str> = chain
-        .kinds()
-        .map(|k| {
-            if k == JointKind::Revolute {
-                "true"
-            } else {
-                "false"
-            }
-        })
-        .collect();
     items.push(Item::Const(Const {
         doc: "Which joints are revolute (their values wrap by whole turns).".into(),
         name: "REVOLUTE",
         ty: format!("[bool; {n}]"),
-        value: format!("[{}]", revolute.join(", ")),
+        value: format!("[{}]", joints_are(chain, JointKind::Revolute)),
     }));
     items.push(Item::Const(Const {
         doc: "The closed-form IK family, decided exactly at expansion time.".into(),
@@ -237,21 +227,11 @@ fn geometry(chain: &Chain, model: &IkModel) -> Method {
     let h: Vec<String> = (0..n).map(|i| v3(&o[6 * i..6 * i + 3])).collect();
     let p: Vec<String> = (0..n).map(|i| v3(&o[6 * i + 3..6 * i + 6])).collect();
     let r = &o[6 * n..6 * n + 9];
-    let prismatic: Vec<&str> = chain
-        .kinds()
-        .map(|k| {
-            if k == JointKind::Prismatic {
-                "true"
-            } else {
-                "false"
-            }
-        })
-        .collect();
     let result = format!(
         "::kinegen::ik::geometry::Geometry {{ h: [{}], p: [{}], prismatic: [{}], r_tool: ::kinegen::ik::geometry::M3::new({}), p_tool: {} }}",
         h.join(", "),
         p.join(", "),
-        prismatic.join(", "),
+        joints_are(chain, JointKind::Prismatic),
         r.join(", "),
         v3(&o[6 * n + 9..6 * n + 12])
     );
@@ -269,4 +249,13 @@ fn geometry(chain: &Chain, model: &IkModel) -> Method {
             result,
         },
     }
+}
+
+/// `true, false, …`: which joints are of `kind`, as a Rust array's elements.
+fn joints_are(chain: &Chain, kind: JointKind) -> String {
+    let flags: Vec<&str> = chain
+        .kinds()
+        .map(|k| if k == kind { "true" } else { "false" })
+        .collect();
+    flags.join(", ")
 }
