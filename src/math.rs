@@ -484,6 +484,68 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     }
 }
 
+/// fdlibm's `atan` polynomial (`AT`, in `x²`): within 1 ulp for `|x| ≤ 7/16`.
+const ATAN_POLY: [f64; 11] = [
+    3.333_333_333_333_293_180_27e-1,
+    -1.999_999_999_987_648_324_76e-1,
+    1.428_571_427_250_346_637_11e-1,
+    -1.111_111_040_546_235_578_80e-1,
+    9.090_887_133_436_506_561_96e-2,
+    -7.691_876_205_044_829_994_95e-2,
+    6.661_073_137_387_531_206_69e-2,
+    -5.833_570_133_790_573_486_45e-2,
+    4.976_877_994_615_932_360_17e-2,
+    -3.653_157_274_421_691_552_70e-2,
+    1.628_582_011_536_578_236_23e-2,
+];
+
+/// `atan2(y, x)` in a few selects instead of branches, for the closed-form IK (whose
+/// cost was half `atan2`: every joint angle is one): `t = min(|x|, |y|) / max(…)` and,
+/// above `tan(π/8)`, `(t − 1) / (t + 1)` with `π/4` added back — one division either way —
+/// then fdlibm's polynomial (valid to `7/16 > tan(π/8)`, evaluated by Estrin's scheme),
+/// then the octant restored with `π/2` and `π` split into high and low parts. Measured
+/// within 1.3 ulp of glibc's `atan2` over 2 million pairs (`tests/math_atan2.rs`), about
+/// twice as fast.
+/// Zeros, infinities and NaN go to the full `atan2`, so their signed results are
+/// IEEE's.
+#[inline]
+pub fn fast_atan2(y: f64, x: f64) -> f64 {
+    const TAN_PI_8: f64 = 0.414_213_562_373_095_03;
+    const PIO4: (f64, f64) = (
+        7.853_981_633_974_482_789_99e-1,
+        3.061_616_997_868_383_017_93e-17,
+    );
+    const PIO2: (f64, f64) = (
+        1.570_796_326_794_896_558_00,
+        6.123_233_995_736_766_035_87e-17,
+    );
+    const PI: (f64, f64) = (3.141_592_653_589_793_116, 1.224_646_799_147_353_177_2e-16);
+    let (ax, ay) = (abs(x), abs(y));
+    let swap = ay > ax;
+    let (n, d) = if swap { (ax, ay) } else { (ay, ax) };
+    // d = 0 (both zero), d = ∞ or NaN: the cases with IEEE's special results.
+    if !(d > 0.0 && d < f64::INFINITY) || n.is_nan() {
+        return atan2(y, x);
+    }
+    let big = n > TAN_PI_8 * d;
+    let (num, den) = if big { (n - d, n + d) } else { (n, d) };
+    let u = num / den;
+    let a = &ATAN_POLY;
+    let (z, w) = (u * u, u * u * (u * u));
+    let (w2, w4) = (w * w, w * w * (w * w));
+    let s1 = z * ((a[0] + w * a[2]) + w2 * (a[4] + w * a[6]) + w4 * (a[8] + w * a[10]));
+    let s2 = w * ((a[1] + w * a[3]) + w2 * (a[5] + w * a[7]) + w4 * a[9]);
+    let (hi, lo) = if big { PIO4 } else { (0.0, 0.0) };
+    let mut r = hi - ((u * (s1 + s2) - lo) - u);
+    if swap {
+        r = (PIO2.0 - r) + PIO2.1;
+    }
+    if x.is_sign_negative() {
+        r = (PI.0 - r) + PI.1;
+    }
+    r.copysign(y)
+}
+
 /// `acos(x)`.
 #[inline(always)]
 pub fn acos(x: f64) -> f64 {

@@ -10,9 +10,9 @@
 //! Joint numbers in the docs are 1-based, as in the robot's tables; `h`, `p` indices are
 //! 0-based.
 
-use super::geometry::{closest_points, rot, Geometry, Pose, M3, V3};
+use super::geometry::{closest_points, rot, Angle, Geometry, Pose, M3, V3};
 use super::solutions::Candidates;
-use super::subproblems::{sp1, sp2, sp3, sp4, wrap, Fit};
+use super::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit};
 
 /// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
 const PARALLEL: f64 = 1e-20;
@@ -48,46 +48,36 @@ fn orthogonal(k: &V3) -> V3 {
 /// value) q4 is free and q6 is taken from the whole rotation.
 fn wrist(h: &[V3; 3], r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) -> usize {
     let [h4, h5, h6] = h;
-    let t5 = sp4(h4, h6, h5, h4.dot(&(r36 * h6)), 0.0);
-    for (o, &q5) in out.iter_mut().zip(t5.as_slice()) {
-        let r5 = rot(h5, q5);
-        let (q4, f4) = sp1(&(r5 * h6), &(r36 * h6), h4, free[0]);
+    let (r36_h6, r36t_h4) = (r36 * h6, r36.transpose() * h4);
+    let t5 = sp4(h4, h6, h5, h4.dot(&r36_h6), 0.0);
+    for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
+        let r5 = q5.rot(h5);
+        let (q4, f4) = sp1_angle(&(r5 * h6), &r36_h6, h4, free[0]);
         let (q6, f6) = if f4 == Fit::Free {
             // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ r36.
-            let m = (rot(h4, q4) * r5).transpose() * r36;
+            let m = (q4.rot(h4) * r5).transpose() * r36;
             let x = orthogonal(h6);
             sp1(&x, &(m * x), h6, free[1])
         } else {
             // R6 (R36ᵀ h4) = R5ᵀ h4, since R36ᵀ h4 = R6ᵀ R5ᵀ h4.
-            sp1(&(r36.transpose() * h4), &(r5.transpose() * h4), h6, free[1])
+            sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1])
         };
-        *o = ([q4, q5, q6], t5.fit.and(f4).and(f6));
+        *o = ([q4.theta, q5.theta, q6], t5.fit.and(f4).and(f6));
     }
     t5.n
 }
 
-/// The rotation of the wrist: `R36 = (R1 R2 R3)ᵀ R06` (a prismatic joint turns nothing).
-fn r36(g: &Geometry<6>, q: [f64; 3], r06: &M3) -> M3 {
-    let r = |i: usize| {
-        if g.prismatic[i] {
-            M3::identity()
-        } else {
-            rot(&g.h[i], q[i])
-        }
-    };
-    (r(0) * r(1) * r(2)).transpose() * r06
-}
-
-/// Adds the wrist solutions for the arm joints `q123` to `out`.
+/// Adds the wrist solutions for the arm joints `q123` to `out`; `r123 = R1 R2 R3` (a
+/// prismatic joint turns nothing), so the wrist's rotation is `R36 = r123ᵀ R06`.
 fn with_wrist(
     g: &Geometry<6>,
-    q123: [f64; 3],
+    (q123, r123): ([f64; 3], M3),
     fit: Fit,
     r06: &M3,
     free: &[f64; 6],
     out: &mut Candidates<6, 8>,
 ) {
-    let r = r36(g, q123, r06);
+    let r = r123.transpose() * r06;
     let mut w = [([0.0; 3], Fit::Exact); 2];
     let n = wrist(&[g.h[3], g.h[4], g.h[5]], &r, [free[3], free[5]], &mut w);
     for &(q456, f) in &w[..n] {
@@ -120,8 +110,10 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> 
     let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
     let p16 = w - g.p[0];
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), free[0]);
-    for &q1 in t1.as_slice() {
-        let v = rot(&(-h1), q1) * p16 - p12;
+    for q1 in t1.as_slice() {
+        // R1 = rot(h1, q1); rot(−h1, q1) = R1ᵀ.
+        let r1 = q1.rot(&h1);
+        let v = r1.transpose() * p16 - p12;
         // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial
         // offsets in the distances, whose rounding would blur the elbow's double root.
         let t3 = sp3(
@@ -131,10 +123,12 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> 
             flat(&h3, &v).norm(),
             free[2],
         );
-        for &q3 in t3.as_slice() {
-            let (q2, f2) = sp1(&(p23 + rot(&h3, q3) * p34), &v, &h2, free[1]);
+        for q3 in t3.as_slice() {
+            let r3 = q3.rot(&h3);
+            let (q2, f2) = sp1_angle(&(p23 + r3 * p34), &v, &h2, free[1]);
             let fit = t1.fit.and(t3.fit).and(f2);
-            with_wrist(g, [q1, q2, q3], fit, &r06, free, &mut out);
+            let arm = ([q1.theta, q2.theta, q3.theta], r1 * q2.rot(&h2) * r3);
+            with_wrist(g, arm, fit, &r06, free, &mut out);
         }
     }
     out
@@ -158,11 +152,16 @@ pub fn spherical_two_intersecting(
     let (p23, p34) = (g.p[2] - c12, w0 - g.p[2]);
     let p16 = w - c12;
     let t3 = sp3(&p34, &(-p23), &h3, p16.norm(), free[2]);
-    for &q3 in t3.as_slice() {
-        let arm = p23 + rot(&h3, q3) * p34;
+    for q3 in t3.as_slice() {
+        let r3 = q3.rot(&h3);
+        let arm = p23 + r3 * p34;
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
-        for &(q1, q2) in &t12[..n] {
-            with_wrist(g, [q1, q2, q3], t3.fit.and(f12), &r06, free, &mut out);
+        for (q1, q2) in &t12[..n] {
+            let arm = (
+                [q1.theta, q2.theta, q3.theta],
+                q1.rot(&h1) * q2.rot(&h2) * r3,
+            );
+            with_wrist(g, arm, t3.fit.and(f12), &r06, free, &mut out);
         }
     }
     out
@@ -202,8 +201,10 @@ pub fn spherical_two_intersecting_prismatic(
     for &q3 in &roots[..n3] {
         let arm = u + h3 * q3;
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
-        for &(q1, q2) in &t12[..n] {
-            with_wrist(g, [q1, q2, q3], fit.and(f12), &r06, free, &mut out);
+        for (q1, q2) in &t12[..n] {
+            // Joint 3 slides: it turns nothing.
+            let arm = ([q1.theta, q2.theta, q3], q1.rot(&h1) * q2.rot(&h2));
+            with_wrist(g, arm, fit.and(f12), &r06, free, &mut out);
         }
     }
     out
@@ -240,14 +241,15 @@ pub fn three_parallel_two_intersecting(
     );
     let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34 + p45)), free[0]);
-    for &q1 in t1.as_slice() {
-        let r1t = rot(&h1, q1).transpose();
+    for q1 in t1.as_slice() {
+        let r1t = q1.rot(&h1).transpose();
         let target = r1t * r06;
+        let (target_h5, target_h6) = (target * h5, target * h6);
         let arm = r1t * p16 - p12;
-        let t5 = sp4(&h2, &h6, &h5, h2.dot(&(target * h6)), free[4]);
-        for &q5 in t5.as_slice() {
-            let r5 = rot(&h5, q5);
-            let (theta, ft) = sp1(&(r5 * h6), &(target * h6), &h2, 0.0);
+        let t5 = sp4(&h2, &h6, &h5, h2.dot(&target_h6), free[4]);
+        for q5 in t5.as_slice() {
+            let r5 = q5.rot(&h5);
+            let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
             let fit = t1.fit.and(t5.fit).and(ft);
             // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist singularity q4 =
             // free — or, when that q4 puts the wrist out of the elbow's reach, θ chosen
@@ -268,12 +270,23 @@ pub fn three_parallel_two_intersecting(
                 );
                 if t.fit == Fit::LeastSquares {
                     let hint = free[1] + s3 * free[2] + s4 * free[3];
-                    mode = Arm::Theta(mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint));
+                    let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
+                    mode = Arm::Theta(Angle::new(theta));
                 }
             }
-            let (reach, known) = match mode {
-                Arm::Theta(theta) => (arm - rot(&h2, theta) * p45, p34),
-                Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45),
+            // q6 — SP1: R6 h5 = (R14 R5)ᵀ R1ᵀ R06 h5 with R14 = rot(h2, θ): with θ known,
+            // one per (q1, q5), whichever elbow.
+            let q6_for = |r14: &M3| {
+                let x = r5.transpose() * (r14.transpose() * target_h5);
+                sp1(&h5, &x, &h6, free[5])
+            };
+            let (reach, known, q6_known) = match mode {
+                Arm::Theta(t) => {
+                    let r14 = t.rot(&h2);
+                    (arm - r14 * p45, p34, q6_for(&r14))
+                }
+                // θ, so q6, depends on the elbow: found per q3 below.
+                Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45, (0.0, Fit::Exact)),
             };
             // In the plane ⟂ h2 (the components along h2 agree by step 2).
             let t3 = sp3(
@@ -283,16 +296,16 @@ pub fn three_parallel_two_intersecting(
                 flat(&h2, &reach).norm(),
                 free[2],
             );
-            for &q3 in t3.as_slice() {
-                let (q2, f2) = sp1(&(p23 + rot(&h3, q3) * known), &reach, &h2, free[1]);
-                let (q4, theta) = match mode {
-                    Arm::Theta(theta) => (wrap(s4 * (theta - q2 - s3 * q3)), theta),
-                    Arm::Q4(q4) => (q4, q2 + s3 * q3 + s4 * q4),
+            for q3 in t3.as_slice() {
+                let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &reach, &h2, free[1]);
+                let (q4, (q6, f6)) = match mode {
+                    Arm::Theta(t) => (wrap(s4 * (t.theta - q2 - s3 * q3.theta)), q6_known),
+                    Arm::Q4(q4) => (q4, q6_for(&rot(&h2, q2 + s3 * q3.theta + s4 * q4))),
                 };
-                let r14 = rot(&h2, theta);
-                let x = r5.transpose() * r14.transpose() * target * h5;
-                let (q6, f6) = sp1(&h5, &x, &h6, free[5]);
-                out.push([q1, q2, q3, q4, q5, q6], fit.and(t3.fit).and(f2).and(f6));
+                out.push(
+                    [q1.theta, q2, q3.theta, q4, q5.theta, q6],
+                    fit.and(t3.fit).and(f2).and(f6),
+                );
             }
         }
     }
@@ -303,7 +316,7 @@ pub fn three_parallel_two_intersecting(
 #[derive(Clone, Copy)]
 enum Arm {
     /// `θ = q2 ± q3 ± q4` is known.
-    Theta(f64),
+    Theta(Angle),
     /// q4 is (the wrist singularity's free joint).
     Q4(f64),
 }
@@ -315,8 +328,8 @@ fn mid_range_theta(h2: &V3, arm: &V3, p23: &V3, p34: &V3, p45: &V3, hint: f64) -
     let r = flat(h2, p23).norm().max(flat(h2, p34).norm());
     let roots = sp3(&flat(h2, p45), &flat(h2, arm), h2, r, hint);
     let gap = |t: f64| wrap(t - hint).abs();
-    let mut best = roots.theta[0];
-    for &t in roots.as_slice() {
+    let mut best = roots.angles[0].theta;
+    for t in roots.thetas() {
         if gap(t) < gap(best) {
             best = t;
         }
@@ -354,8 +367,9 @@ pub fn planar<const N: usize>(
     };
     let (p_ab, v, d) = (flat(g.p[b] - g.p[a]), flat(end - g.p[b]), flat(w - g.p[a]));
     let tb = sp3(&v, &(-p_ab), &g.h[b], d.norm(), free[b]);
-    for &qb in tb.as_slice() {
-        let u = p_ab + rot(&g.h[b], qb) * v;
+    for qb in tb.as_slice() {
+        let u = p_ab + qb.rot(&g.h[b]) * v;
+        let qb = qb.theta;
         let (qa, fa) = sp1(&u, &d, &g.h[a], free[a]);
         let mut q = *free;
         q[a] = qa;

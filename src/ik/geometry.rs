@@ -83,6 +83,42 @@ pub fn rot(k: &V3, theta: f64) -> M3 {
     rot_sc(k, s, c)
 }
 
+/// An angle with its sine and cosine. The subproblems find the sine and cosine of their
+/// roots algebraically (a root of `r cos(θ − φ) = b` has them from `r`, `φ`'s and `b`
+/// without a `sin`/`cos` call), so the solvers turn by a root without evaluating it again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Angle {
+    /// The angle (radians, `(−π, π]` when it comes from a subproblem).
+    pub theta: f64,
+    /// `sin θ`.
+    pub sin: f64,
+    /// `cos θ`.
+    pub cos: f64,
+}
+
+impl Angle {
+    /// `theta`, with its sine and cosine evaluated.
+    pub fn new(theta: f64) -> Angle {
+        let (sin, cos) = sin_cos(theta);
+        Angle { theta, sin, cos }
+    }
+
+    /// The angle whose sine and cosine are proportional to `y` and `x` (`x² + y² > 0`).
+    pub fn atan2(y: f64, x: f64) -> Angle {
+        let r = sqrt(x * x + y * y);
+        Angle {
+            theta: crate::math::fast_atan2(y, x),
+            sin: y / r,
+            cos: x / r,
+        }
+    }
+
+    /// The rotation by this angle about the unit axis `k`.
+    pub fn rot(&self, k: &V3) -> M3 {
+        rot_sc(k, self.sin, self.cos)
+    }
+}
+
 /// The points `a + s·u` and `b + t·v` closest to each other on two lines, or `None` when
 /// the lines are parallel (to `tol` in `|u × v|²`).
 pub fn closest_points(a: &V3, u: &V3, b: &V3, v: &V3, tol: f64) -> Option<(V3, V3)> {

@@ -177,6 +177,7 @@ fn turn_near(x: f64, target: f64, [lo, hi]: [f64; 2]) -> f64 {
 
 /// `θ` wrapped into `(−π, π]`, then moved by a whole turn into `[lo, hi]` if that is
 /// where it fits.
+#[inline]
 fn into_limits(theta: f64, [lo, hi]: [f64; 2]) -> f64 {
     let t = wrap(theta);
     if t >= lo && t <= hi {
@@ -211,6 +212,9 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     check: &C,
 ) -> IkSolutions<N, K> {
     let mut out = IkSolutions::empty();
+    // `unchecked[i]`: solution i came from a candidate some subproblem did not solve
+    // exactly.
+    let mut unchecked = [false; K];
     for c in candidates.as_slice() {
         let mut q = c.q;
         for i in 0..N {
@@ -242,13 +246,24 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             },
             within_limits,
         };
-        if let Some(i) = out.iter().position(|b| same(&b.q, &q, revolute)) {
+        // Two candidates every subproblem solved exactly are distinct: where their
+        // branches split, a subproblem gave two roots at least its merge distance apart
+        // (≥ 6e-6 rad for SP3/SP4, ≳ 1e-7 for SP2 and the prismatic quadratic; see
+        // `subproblems`), far above SAME_CONFIGURATION. Only pairs with a singular or
+        // least-squares candidate can be one configuration twice (the self-tests check
+        // that no solution set holds a duplicate).
+        let copy = (0..out.len)
+            .filter(|&i| c.fit != Fit::Exact || unchecked[i])
+            .find(|&i| same(&out.items[i].q, &q, revolute));
+        if let Some(i) = copy {
             // Keep the better of two copies of one configuration.
             if exact && !out.items[i].exact {
                 out.items[i] = branch;
+                unchecked[i] = c.fit != Fit::Exact;
             }
             continue;
         }
+        unchecked[out.len] = c.fit != Fit::Exact;
         out.items[out.len] = branch;
         out.len += 1;
     }
@@ -328,6 +343,7 @@ pub fn with_locked<const N: usize, const M: usize, const K: usize>(
     out
 }
 
+#[inline]
 fn same<const N: usize>(a: &[f64; N], b: &[f64; N], revolute: &[bool; N]) -> bool {
     (0..N).all(|i| {
         let d = a[i] - b[i];

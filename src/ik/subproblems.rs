@@ -10,8 +10,8 @@
 //! like, and splitting it into two roots `±1e-8` apart would make the angles after it
 //! meaningless.
 
-use super::geometry::{scale, sqrt0, V3};
-use crate::math::{atan2, sqrt};
+use super::geometry::{scale, sqrt0, Angle, V3};
+use crate::math::{fast_atan2 as atan2, sqrt};
 
 /// A discriminant smaller than this many times its estimated rounding error
 /// (`ε · terms`) is zero: the two roots are one double root.
@@ -62,11 +62,11 @@ impl Fit {
     }
 }
 
-/// Up to two angles.
+/// Up to two angles, with their sines and cosines.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Roots {
-    /// The angles; `theta[..n]` are used.
-    pub theta: [f64; 2],
+    /// The angles; `angles[..n]` are used.
+    pub angles: [Angle; 2],
     /// How many (1 or 2).
     pub n: usize,
     /// How they fit.
@@ -74,17 +74,22 @@ pub struct Roots {
 }
 
 impl Roots {
-    fn one(theta: f64, fit: Fit) -> Roots {
+    fn one(angle: Angle, fit: Fit) -> Roots {
         Roots {
-            theta: [theta, theta],
+            angles: [angle, angle],
             n: 1,
             fit,
         }
     }
 
     /// The angles.
-    pub fn as_slice(&self) -> &[f64] {
-        &self.theta[..self.n]
+    pub fn as_slice(&self) -> &[Angle] {
+        &self.angles[..self.n]
+    }
+
+    /// The angles' values.
+    pub fn thetas(&self) -> impl Iterator<Item = f64> + '_ {
+        self.as_slice().iter().map(|a| a.theta)
     }
 }
 
@@ -97,15 +102,24 @@ fn off_axis(k: &V3, p: &V3) -> V3 {
 ///
 /// Least squares (`‖rot(k, θ) p1 − p2‖` minimised) when the two differ in length or in
 /// their component along `k`; free (`free` returned) when `p1` or `p2` lies on the axis.
+#[inline]
 pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
+    let (a, fit) = sp1_angle(p1, p2, k, free);
+    (a.theta, fit)
+}
+
+/// [`sp1`] with the sine and cosine of the angle (from the same products, no `sin`/`cos`
+/// call unless the angle is free).
+#[inline]
+pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
     let (a, b) = (off_axis(k, p1), off_axis(k, p2));
     let (na, nb) = (a.norm_squared(), b.norm_squared());
     let s1 = scale(p1.norm_squared());
     let s2 = scale(p2.norm_squared());
     if na <= ON_AXIS * s1 || nb <= ON_AXIS * s2 {
-        return (free, Fit::Free);
+        return (Angle::new(free), Fit::Free);
     }
-    let theta = atan2(k.dot(&a.cross(&b)), a.dot(&b));
+    let theta = Angle::atan2(k.dot(&a.cross(&b)), a.dot(&b));
     let same = (na - nb).abs() <= 1e-9 * (na + nb)
         && (k.dot(p1) - k.dot(p2)).abs() <= 1e-9 * sqrt(s1 + s2);
     (theta, if same { Fit::Exact } else { Fit::LeastSquares })
@@ -115,6 +129,10 @@ pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
 /// `r cos(θ − φ) = b`: two roots, a double root, or the least-squares `φ` / `φ + π`.
 /// `mag2` is the squared size of the data (`‖h‖²‖p‖²`): `r` is zero relative to it;
 /// `terms` the size of the terms `b` was computed from (its rounding error is `ε terms`).
+///
+/// With `cos φ = a / r`, `sin φ = a' / r`, `cos d = b / r`, `sin d = √(r² − b²) / r`, the
+/// roots `φ ± d` have `cos = (a b ∓ a' √…) / r²` and `sin = (a' b ± a √…) / r²`: one
+/// `atan2` per root and no `sin`/`cos` for the rotations built from it.
 fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> Roots {
     let rr = ca * ca + sa * sa;
     if rr <= ON_AXIS * scale(mag2) {
@@ -124,30 +142,36 @@ fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> R
         } else {
             Fit::LeastSquares
         };
-        return Roots::one(free, fit);
+        return Roots::one(Angle::new(free), fit);
     }
-    let phi = atan2(sa, ca);
     let disc = rr - b * b;
     let noise = EPS * (2.0 * sqrt(rr) * (terms + sqrt(mag2)) + rr);
-    if disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr) {
-        let theta = if b >= 0.0 {
-            phi
+    let double = disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr);
+    if double || disc < 0.0 {
+        // θ = φ where b ≥ 0, else φ + π: the nearest to r cos(θ − φ) = b.
+        let sign = if b >= 0.0 { 1.0 } else { -1.0 };
+        let fit = if double {
+            Fit::Double
         } else {
-            phi + core::f64::consts::PI
+            Fit::LeastSquares
         };
-        return Roots::one(wrap(theta), Fit::Double);
+        return Roots::one(Angle::atan2(sign * sa, sign * ca), fit);
     }
-    if disc < 0.0 {
-        let theta = if b >= 0.0 {
-            phi
-        } else {
-            phi + core::f64::consts::PI
-        };
-        return Roots::one(wrap(theta), Fit::LeastSquares);
-    }
-    let d = atan2(sqrt0(disc), b);
+    let sd = sqrt0(disc);
+    let inv = 1.0 / rr;
+    let root = |sin: f64, cos: f64| {
+        let (sin, cos) = (sin * inv, cos * inv);
+        Angle {
+            theta: atan2(sin, cos),
+            sin,
+            cos,
+        }
+    };
     Roots {
-        theta: [wrap(phi + d), wrap(phi - d)],
+        angles: [
+            root(sa * b + ca * sd, ca * b - sa * sd),
+            root(sa * b - ca * sd, ca * b + sa * sd),
+        ],
         n: 2,
         fit: Fit::Exact,
     }
@@ -186,7 +210,13 @@ pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
 /// about `k1` and of `p2` about `k2` meet (`k1 ∦ k2`). Up to two pairs; a double root when
 /// the circles touch; least squares when they miss (or `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free
 /// (the caller's value) when its vector lies on its axis.
-pub fn sp2(p1: &V3, p2: &V3, k1: &V3, k2: &V3, free: (f64, f64)) -> ([(f64, f64); 2], usize, Fit) {
+pub fn sp2(
+    p1: &V3,
+    p2: &V3,
+    k1: &V3,
+    k2: &V3,
+    free: (f64, f64),
+) -> ([(Angle, Angle); 2], usize, Fit) {
     // The meeting point z = α k1 + β k2 + γ (k1 × k2): kᵢ·z = kᵢ·pᵢ, ‖z‖ = ‖p1‖.
     let c12 = k1.dot(k2);
     let n = k1.cross(k2);
@@ -215,10 +245,15 @@ pub fn sp2(p1: &V3, p2: &V3, k1: &V3, k2: &V3, free: (f64, f64)) -> ([(f64, f64)
         let g = n * sqrt0(g2);
         ([base + g, base - g], 2)
     };
-    let mut out = [(0.0, 0.0); 2];
+    let zero = Angle {
+        theta: 0.0,
+        sin: 0.0,
+        cos: 1.0,
+    };
+    let mut out = [(zero, zero); 2];
     for (o, z) in out.iter_mut().zip(zs.0.iter()).take(zs.1) {
-        let (t1, f1) = sp1(p1, z, k1, free.0);
-        let (t2, f2) = sp1(p2, z, k2, free.1);
+        let (t1, f1) = sp1_angle(p1, z, k1, free.0);
+        let (t2, f2) = sp1_angle(p2, z, k2, free.1);
         *o = (t1, t2);
         fit = fit.and(mild(f1)).and(mild(f2));
     }
@@ -289,9 +324,11 @@ mod tests {
         let d = h.dot(&(rot(&k, -2.0) * p));
         let r = sp4(&h, &p, &k, d, 0.0);
         assert_eq!((r.n, r.fit), (2, Fit::Exact));
-        assert!(r.as_slice().iter().any(|t| (t + 2.0).abs() < 1e-12));
-        for &t in r.as_slice() {
-            assert!((h.dot(&(rot(&k, t) * p)) - d).abs() < 1e-14);
+        assert!(r.thetas().any(|t| (t + 2.0).abs() < 1e-12));
+        for a in r.as_slice() {
+            assert!((h.dot(&(rot(&k, a.theta) * p)) - d).abs() < 1e-14);
+            // The sine and cosine found with the root are its own.
+            assert!((a.sin - a.theta.sin()).abs() < 1e-15 && (a.cos - a.theta.cos()).abs() < 1e-15);
         }
         // Out of range: the nearest, flagged.
         let r = sp4(&h, &p, &k, 10.0, 0.0);
@@ -304,13 +341,14 @@ mod tests {
         let (p1, p2) = (V3::new(1.0, 0.0, 0.0), V3::new(3.0, 0.0, 0.0));
         let r = sp3(&p1, &p2, &k, 2.5, 0.0);
         assert_eq!(r.n, 2);
-        for &t in r.as_slice() {
+        for t in r.thetas() {
             assert!(((rot(&k, t) * p1 - p2).norm() - 2.5).abs() < 1e-14);
         }
         // Tangent: the circle touches the sphere at θ = π (distance 4).
         let r = sp3(&p1, &p2, &k, 4.0, 0.0);
         assert_eq!((r.n, r.fit), (1, Fit::Double));
-        assert!((r.theta[0].abs() - core::f64::consts::PI).abs() < 1e-12);
+        assert!((r.angles[0].theta.abs() - core::f64::consts::PI).abs() < 1e-12);
+        assert!((r.angles[0].cos + 1.0).abs() < 1e-12);
     }
 
     #[test]
@@ -321,12 +359,13 @@ mod tests {
         let p1 = rot(&k1, -0.4) * z;
         let (pairs, n, fit) = sp2(&p1, &p2, &k1, &k2, (0.0, 0.0));
         assert_eq!((n, fit), (2, Fit::Exact));
-        for &(t1, t2) in &pairs[..n] {
-            assert!((rot(&k1, t1) * p1 - rot(&k2, t2) * p2).norm() < 1e-13);
+        for (t1, t2) in &pairs[..n] {
+            assert!((t1.rot(&k1) * p1 - t2.rot(&k2) * p2).norm() < 1e-13);
+            assert!((rot(&k1, t1.theta) - t1.rot(&k1)).norm() < 1e-15);
         }
         assert!(pairs[..n]
             .iter()
-            .any(|&(t1, t2)| (t1 - 0.4).abs() < 1e-12 && (t2 - 0.9).abs() < 1e-12));
+            .any(|(t1, t2)| (t1.theta - 0.4).abs() < 1e-12 && (t2.theta - 0.9).abs() < 1e-12));
     }
 
     #[test]
