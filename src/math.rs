@@ -484,19 +484,20 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     }
 }
 
-/// fdlibm's `atan` polynomial (`AT`, in `x²`): within 1 ulp for `|x| ≤ 7/16`.
+/// fdlibm's `atan` polynomial (`aT`, in `x²`; its bit patterns): within 1 ulp for
+/// `|x| ≤ 7/16`.
 const ATAN_POLY: [f64; 11] = [
-    3.333_333_333_333_293_180_27e-1,
-    -1.999_999_999_987_648_324_76e-1,
-    1.428_571_427_250_346_637_11e-1,
-    -1.111_111_040_546_235_578_80e-1,
-    9.090_887_133_436_506_561_96e-2,
-    -7.691_876_205_044_829_994_95e-2,
-    6.661_073_137_387_531_206_69e-2,
-    -5.833_570_133_790_573_486_45e-2,
-    4.976_877_994_615_932_360_17e-2,
-    -3.653_157_274_421_691_552_70e-2,
-    1.628_582_011_536_578_236_23e-2,
+    f64::from_bits(0x3FD5_5555_5555_550D), // 3.33333333333329318e-01
+    f64::from_bits(0xBFC9_9999_9998_EBC4), // -1.99999999998764832e-01
+    f64::from_bits(0x3FC2_4924_9200_83FF), // 1.42857142725034664e-01
+    f64::from_bits(0xBFBC_71C6_FE23_1671), // -1.11111104054623558e-01
+    f64::from_bits(0x3FB7_45CD_C54C_206E), // 9.09088713343650656e-02
+    f64::from_bits(0xBFB3_B0F2_AF74_9A6D), // -7.69187620504482999e-02
+    f64::from_bits(0x3FB1_0D66_A0D0_3D51), // 6.66107313738753121e-02
+    f64::from_bits(0xBFAD_DE2D_52DE_FD9A), // -5.83357013379057349e-02
+    f64::from_bits(0x3FA9_7B4B_2476_0DEB), // 4.97687799461593236e-02
+    f64::from_bits(0xBFA2_B444_2C6A_6C2F), // -3.65315727442169155e-02
+    f64::from_bits(0x3F90_AD3A_E322_DA11), // 1.62858201153657824e-02
 ];
 
 /// `atan2(y, x)` in a few selects instead of branches, for the closed-form IK (whose
@@ -510,16 +511,12 @@ const ATAN_POLY: [f64; 11] = [
 /// IEEE's.
 #[inline]
 pub fn fast_atan2(y: f64, x: f64) -> f64 {
-    const TAN_PI_8: f64 = 0.414_213_562_373_095_03;
-    const PIO4: (f64, f64) = (
-        7.853_981_633_974_482_789_99e-1,
-        3.061_616_997_868_383_017_93e-17,
-    );
-    const PIO2: (f64, f64) = (
-        1.570_796_326_794_896_558_00,
-        6.123_233_995_736_766_035_87e-17,
-    );
-    const PI: (f64, f64) = (3.141_592_653_589_793_116, 1.224_646_799_147_353_177_2e-16);
+    use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+    const TAN_PI_8: f64 = 0.414_213_562_373_095;
+    // π/4, π/2, π rounded, and what the rounding left off (fdlibm's atanlo, pi_lo).
+    const PIO4: (f64, f64) = (FRAC_PI_4, f64::from_bits(0x3C81_A626_3314_5C07));
+    const PIO2: (f64, f64) = (FRAC_PI_2, f64::from_bits(0x3C91_A626_3314_5C07));
+    const PI_SPLIT: (f64, f64) = (PI, f64::from_bits(0x3CA1_A626_3314_5C07));
     let (ax, ay) = (abs(x), abs(y));
     let swap = ay > ax;
     let (n, d) = if swap { (ax, ay) } else { (ay, ax) };
@@ -541,7 +538,7 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
         r = (PIO2.0 - r) + PIO2.1;
     }
     if x.is_sign_negative() {
-        r = (PI.0 - r) + PI.1;
+        r = (PI_SPLIT.0 - r) + PI_SPLIT.1;
     }
     r.copysign(y)
 }

@@ -35,10 +35,10 @@ fn ulps(got: f64, want: f64) -> f64 {
 fn within_three_ulp_of_std_over_quadrants_and_magnitudes() {
     let mut rng = Rng(0x5eed_a7a2);
     let mut worst = 0.0_f64;
-    for i in 0..2_000_000 {
+    for i in 0..2_000_000_i32 {
         // Magnitudes from 1e-12 to 1e12 on either argument, independently.
-        let ey = (i % 25) as i32 - 12;
-        let ex = ((i / 25) % 25) as i32 - 12;
+        let ey = i % 25 - 12;
+        let ex = (i / 25) % 25 - 12;
         let y = rng.signed() * 10f64.powi(ey);
         let x = rng.signed() * 10f64.powi(ex);
         let got = fast_atan2(y, x);
