@@ -77,6 +77,14 @@ struct Tally {
     solutions: usize,
 }
 
+impl Tally {
+    fn add<const N: usize, const K: usize>(&mut self, singular: bool, sols: &IkSolutions<N, K>) {
+        self.cases += 1;
+        self.singular += usize::from(singular);
+        self.solutions += sols.exact().count();
+    }
+}
+
 /// Checks one pose; `singular` says whether the generating configuration is singular,
 /// `named` whether the robot has `SINGULARITIES` its branches must name.
 #[allow(clippy::too_many_arguments)]
@@ -136,8 +144,37 @@ fn check<const N: usize, const K: usize>(
     );
 }
 
+/// Task-row error of a planar arm: `x`, `y` (and `z`, the angle about z) as `rows` says.
+fn task_gap(rows: &'static [usize]) -> impl Fn(&[[f64; 4]; 4], &[[f64; 4]; 4]) -> f64 {
+    move |a, b| {
+        let angle = |t: &[[f64; 4]; 4]| t[1][0].atan2(t[0][0]);
+        rows.iter()
+            .map(|&r| match r {
+                0..=2 => (a[r][3] - b[r][3]).abs(),
+                _ => {
+                    let d = angle(a) - angle(b);
+                    (d - TAU * (d / TAU).round()).abs()
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+/// `CASES` seeded configurations of a robot through [`check`]; the pose error is the
+/// whole pose's, or (`task`) the task rows' of a planar arm.
 macro_rules! self_test {
     ($test:ident, $ty:ty, $seed:expr) => {
+        self_test!($test, $ty, $seed, pose_error);
+    };
+    ($test:ident, $ty:ty, $seed:expr, task) => {
+        self_test!(
+            $test,
+            $ty,
+            $seed,
+            task_gap(&<$ty as kinegen::TaskKinematics<{ <$ty>::DOF }, { <$ty>::DOF }>>::TASK_ROWS)
+        );
+    };
+    ($test:ident, $ty:ty, $seed:expr, $gap:expr) => {
         #[test]
         fn $test() {
             let robot = <$ty>::default();
@@ -162,11 +199,9 @@ macro_rules! self_test {
                     true,
                     &<$ty>::REVOLUTE,
                     |x| robot.fk(x),
-                    pose_error,
+                    $gap,
                 );
-                tally.cases += 1;
-                tally.singular += usize::from(singular);
-                tally.solutions += sols.exact().count();
+                tally.add(singular, &sols);
             }
             eprintln!("{}: {tally:?}", stringify!($ty));
         }
@@ -184,66 +219,9 @@ self_test!(stanford, Stanford, 1969);
 self_test!(kuka_kr6_r900, KukaKr6R900, 6900);
 self_test!(abb_irb120, AbbIrb120, 120);
 self_test!(abb_irb140, AbbIrb140, 140);
-
-/// Task-row error of a planar arm: `x`, `y` (and `z`, the angle about z) as `rows` says.
-fn task_gap(rows: &'static [usize]) -> impl Fn(&[[f64; 4]; 4], &[[f64; 4]; 4]) -> f64 {
-    move |a, b| {
-        let angle = |t: &[[f64; 4]; 4]| t[1][0].atan2(t[0][0]);
-        rows.iter()
-            .map(|&r| match r {
-                0..=2 => (a[r][3] - b[r][3]).abs(),
-                _ => {
-                    let d = angle(a) - angle(b);
-                    (d - TAU * (d / TAU).round()).abs()
-                }
-            })
-            .fold(0.0, f64::max)
-    }
-}
-
-macro_rules! planar_self_test {
-    ($test:ident, $ty:ty, $seed:expr) => {
-        #[test]
-        fn $test() {
-            use kinegen::TaskKinematics;
-            let robot = <$ty>::default();
-            let mut rng = XorShift64::new($seed);
-            let rows: &'static [usize] =
-                &<$ty as TaskKinematics<{ <$ty>::DOF }, { <$ty>::DOF }>>::TASK_ROWS;
-            let mut tally = Tally::default();
-            for _ in 0..CASES {
-                let q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
-                let pose = robot.fk(&q);
-                let singular = robot
-                    .singular_factors(&q)
-                    .iter()
-                    .any(|f| f.abs() <= SINGULAR);
-                let sols = robot.ik(&pose);
-                let near = robot.ik_near(&pose, &q);
-                check(
-                    stringify!($ty),
-                    &q,
-                    &pose,
-                    &sols,
-                    near,
-                    singular,
-                    true,
-                    &<$ty>::REVOLUTE,
-                    |x| robot.fk(x),
-                    task_gap(rows),
-                );
-                tally.cases += 1;
-                tally.singular += usize::from(singular);
-                tally.solutions += sols.exact().count();
-            }
-            eprintln!("{}: {tally:?}", stringify!($ty));
-        }
-    };
-}
-
-planar_self_test!(planar_rr, PlanarRr, 22);
-planar_self_test!(planar_rrr, PlanarRrr, 333);
-planar_self_test!(scara, Scara, 600);
+self_test!(planar_rr, PlanarRr, 22, task);
+self_test!(planar_rrr, PlanarRrr, 333, task);
+self_test!(scara, Scara, 600, task);
 
 /// The iiwa with joint 3 locked at its generating value: the 6 others in closed form.
 #[test]
@@ -278,9 +256,7 @@ fn kuka_iiwa14_with_joint_3_locked() {
             pose_error,
         );
         assert!(sols.iter().all(|b| b.q[2] == q[2]), "joint 3 stays locked");
-        tally.cases += 1;
-        tally.singular += usize::from(singular);
-        tally.solutions += sols.exact().count();
+        tally.add(singular, &sols);
     }
     eprintln!("KukaIiwa14 (joint 3 locked): {tally:?}");
 }

@@ -4,23 +4,9 @@
 //! huge values, NaN and ±∞; the batched `sin_cos_n` the same way and against `sin_cos`.
 //! Run with `--nocapture` to see the measured differences.
 
+use kinegen::ik::XorShift64;
 use kinegen::math::{sin_cos, sin_cos_f32, sin_cos_n};
 use std::f64::consts::{FRAC_PI_2, PI};
-
-/// xorshift64*, deterministic.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// Distance in ulps (signed zero counts as equal to zero).
 fn ulps(a: f64, b: f64) -> u64 {
@@ -104,8 +90,8 @@ fn compare(label: &str, xs: impl Iterator<Item = f64>, max_abs: f64) {
 
 #[test]
 fn random_arguments_in_four_pi() {
-    let mut rng = Rng(0x5eed_0001);
-    let xs = (0..1_000_000).map(|_| (2.0 * rng.unit() - 1.0) * 4.0 * PI);
+    let mut rng = XorShift64::new(0x5eed_0001);
+    let xs = (0..1_000_000).map(|_| (2.0 * rng.next_f64() - 1.0) * 4.0 * PI);
     // One ulp of a number below 1 is at most 1.1e-16.
     compare("uniform [-4π, 4π]", xs, 1.2e-16);
 }
@@ -113,10 +99,10 @@ fn random_arguments_in_four_pi() {
 #[test]
 fn random_magnitudes_up_to_the_fast_path_bound() {
     // Log-uniform |x| in [1e-9, 1.6e6]: every quadrant count the fast path handles.
-    let mut rng = Rng(0x5eed_0002);
+    let mut rng = XorShift64::new(0x5eed_0002);
     let xs = (0..300_000).map(|_| {
-        let m = 10f64.powf(-9.0 + 15.2 * rng.unit());
-        if rng.next() & 1 == 0 {
+        let m = 10f64.powf(-9.0 + 15.2 * rng.next_f64());
+        if rng.next_u64() & 1 == 0 {
             m
         } else {
             -m
@@ -217,9 +203,9 @@ fn nan_and_infinity_give_nan() {
 
 #[test]
 fn pythagoras_holds_to_rounding() {
-    let mut rng = Rng(0x5eed_0003);
+    let mut rng = XorShift64::new(0x5eed_0003);
     for _ in 0..100_000 {
-        let x = (2.0 * rng.unit() - 1.0) * 100.0;
+        let x = (2.0 * rng.next_f64() - 1.0) * 100.0;
         let (s, c) = sin_cos(x);
         assert!((s * s + c * c - 1.0).abs() <= 4.0 * f64::EPSILON, "x = {x}");
     }
@@ -227,13 +213,13 @@ fn pythagoras_holds_to_rounding() {
 
 #[test]
 fn single_precision_against_libm_and_std() {
-    let mut rng = Rng(0x5eed_0004);
+    let mut rng = XorShift64::new(0x5eed_0004);
     let mut xs: Vec<f32> = (0..500_000)
-        .map(|_| ((2.0 * rng.unit() - 1.0) * 4.0 * PI) as f32)
+        .map(|_| ((2.0 * rng.next_f64() - 1.0) * 4.0 * PI) as f32)
         .collect();
     xs.extend((0..200_000).map(|_| {
-        let m = 10f64.powf(-5.0 + 13.0 * rng.unit()) as f32;
-        if rng.next() & 1 == 0 {
+        let m = 10f64.powf(-5.0 + 13.0 * rng.next_f64()) as f32;
+        if rng.next_u64() & 1 == 0 {
             m
         } else {
             -m
@@ -364,15 +350,15 @@ fn samples() -> usize {
 
 #[test]
 fn batched_random_arguments_in_two_pi() {
-    let mut rng = Rng(0x5eed_0011);
-    let xs = (0..samples()).map(|_| (2.0 * rng.unit() - 1.0) * 2.0 * PI);
+    let mut rng = XorShift64::new(0x5eed_0011);
+    let xs = (0..samples()).map(|_| (2.0 * rng.next_f64() - 1.0) * 2.0 * PI);
     compare_batched::<6>("uniform [-2π, 2π]", xs, 1.2e-16);
 }
 
 #[test]
 fn batched_random_arguments_up_to_1e5() {
-    let mut rng = Rng(0x5eed_0012);
-    let xs = (0..samples()).map(|_| (2.0 * rng.unit() - 1.0) * 1e5);
+    let mut rng = XorShift64::new(0x5eed_0012);
+    let xs = (0..samples()).map(|_| (2.0 * rng.next_f64() - 1.0) * 1e5);
     compare_batched::<6>("uniform [-1e5, 1e5]", xs, 1.2e-16);
 }
 
@@ -381,10 +367,10 @@ fn batched_random_magnitudes_and_lane_counts() {
     // Log-uniform |x| in [1e-9, 1.6e6]: the fast path's whole range and its edges; lane
     // counts that fill SSE registers exactly and not.
     let xs = |seed| {
-        let mut rng = Rng(seed);
+        let mut rng = XorShift64::new(seed);
         (0..300_000).map(move |_| {
-            let m = 10f64.powf(-9.0 + 15.2 * rng.unit());
-            if rng.next() & 1 == 0 {
+            let m = 10f64.powf(-9.0 + 15.2 * rng.next_f64());
+            if rng.next_u64() & 1 == 0 {
                 m
             } else {
                 -m

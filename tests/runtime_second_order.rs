@@ -7,26 +7,14 @@ use kinegen::adapters::{fk_isometry, jacobian_matrix};
 use kinegen::manipulability::manipulability;
 use kinegen::redundancy::{gradient_projection, Projection};
 use kinegen::velocity::Damping;
+use kinegen::ik::XorShift64;
 use kinegen::{Kinematics, SecondOrderKinematics, SolveError};
 use kinegen_robots::{Panda, PlanarRrr, Ur5};
 use nalgebra::{SVector, Translation3, Vector3};
 
-/// SplitMix64.
-struct Rng(u64);
-
-impl Rng {
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
-    }
-
-    fn vector<const N: usize>(&mut self, lo: f64, hi: f64) -> [f64; N] {
-        core::array::from_fn(|_| self.range(lo, hi))
-    }
+/// `N` values uniform in `[lo, hi)` from the runtime's seeded generator.
+fn vector<const N: usize>(rng: &mut XorShift64, lo: f64, hi: f64) -> [f64; N] {
+    core::array::from_fn(|_| lo + (hi - lo) * rng.next_f64())
 }
 
 /// `J q̈ + J̇ q̇`.
@@ -47,11 +35,11 @@ fn sigma_min<const N: usize, R: Kinematics<N>>(robot: &R, q: &[f64; N]) -> f64 {
 #[test]
 fn resolved_acceleration_gives_the_commanded_acceleration() {
     let (ur5, damping) = (Ur5::default(), Damping::default());
-    let mut rng = Rng(16);
+    let mut rng = XorShift64::new(16);
     let mut checked = 0;
     for _ in 0..200 {
-        let (q, qd) = (rng.vector::<6>(-3.0, 3.0), rng.vector::<6>(-2.0, 2.0));
-        let xdd = SVector::<f64, 6>::from(rng.vector::<6>(-1.0, 1.0));
+        let (q, qd) = (vector::<6>(&mut rng, -3.0, 3.0), vector::<6>(&mut rng, -2.0, 2.0));
+        let xdd = SVector::<f64, 6>::from(vector::<6>(&mut rng, -1.0, 1.0));
         if sigma_min(&ur5, &q) < damping.epsilon {
             continue;
         }
@@ -125,13 +113,13 @@ fn resolved_acceleration_tracks_a_moving_pose() {
 fn gradient_projection_climbs_manipulability_in_the_null_space() {
     let panda = Panda::default();
     let projection = Projection::default();
-    let mut rng = Rng(7);
+    let mut rng = XorShift64::new(7);
     for _ in 0..50 {
-        let q = rng.vector::<7>(-2.0, 2.0);
+        let q = vector::<7>(&mut rng, -2.0, 2.0);
         if sigma_min(&panda, &q) < 1e-2 {
             continue;
         }
-        let xdot = SVector::<f64, 6>::from(rng.vector::<6>(-0.5, 0.5));
+        let xdot = SVector::<f64, 6>::from(vector::<6>(&mut rng, -0.5, 0.5));
         let qd = gradient_projection(&panda, &q, &xdot, &projection).unwrap();
         let twist = jacobian_matrix(&panda, &q) * qd;
         assert!((twist - xdot).norm() < 1e-9, "q = {q:?}");

@@ -13,6 +13,7 @@
 // Parameter names follow the DH tables (`L1`, `a2`).
 #![allow(non_snake_case)]
 
+use kinegen::ik::XorShift64;
 use kinegen::SecondOrderKinematics;
 use kinegen_core::numeric::{self, Jacobian, NumericRobot};
 use kinegen_robots::*;
@@ -26,20 +27,6 @@ const H: f64 = 1e-5;
 fn load(file: &str) -> kinegen_core::Robot {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
     kinegen_core::front::toml_file::load_file(&path).unwrap().0
-}
-
-/// SplitMix64.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 fn close(got: f64, want: f64, tol: f64, what: &dyn Fn() -> String) {
@@ -72,7 +59,7 @@ fn check<const N: usize, K: SecondOrderKinematics<N>>(
 ) {
     let table = load(file);
     let num = NumericRobot::new(&table).unwrap();
-    let mut rng = Rng(seed);
+    let mut rng = XorShift64::new(seed);
     let limits = robot.limits();
     for _ in 0..CONFIGURATIONS {
         let mut q = [0.0; N];
@@ -82,8 +69,8 @@ fn check<const N: usize, K: SecondOrderKinematics<N>>(
                 [lo, hi] if lo.is_finite() && hi.is_finite() => [lo, hi],
                 _ => [-3.0, 3.0],
             };
-            q[i] = lo + (hi - lo) * rng.unit();
-            qd[i] = 4.0 * rng.unit() - 2.0;
+            q[i] = lo + (hi - lo) * rng.next_f64();
+            qd[i] = 4.0 * rng.next_f64() - 2.0;
         }
         let at = |what: &str| format!("{file} {what} at q = {q:?}, qd = {qd:?}");
         let h = robot.hessian(&q);
@@ -243,7 +230,7 @@ fn check_against_own_jacobian<const N: usize, K: SecondOrderKinematics<N>>(
     name: &str,
     seed: u64,
 ) {
-    let mut rng = Rng(seed);
+    let mut rng = XorShift64::new(seed);
     let limits = robot.limits();
     let jacobian_at = |q: &[f64; N], dir: &[f64; N], t: f64| {
         let q: [f64; N] = std::array::from_fn(|i| q[i] + t * dir[i]);
@@ -252,9 +239,9 @@ fn check_against_own_jacobian<const N: usize, K: SecondOrderKinematics<N>>(
     for _ in 0..CONFIGURATIONS {
         let q: [f64; N] = std::array::from_fn(|i| {
             let [lo, hi] = limits[i];
-            lo + (hi - lo) * rng.unit()
+            lo + (hi - lo) * rng.next_f64()
         });
-        let qd: [f64; N] = std::array::from_fn(|_| 4.0 * rng.unit() - 2.0);
+        let qd: [f64; N] = std::array::from_fn(|_| 4.0 * rng.next_f64() - 2.0);
         let at = |what: &str| format!("{name} {what} at q = {q:?}, qd = {qd:?}");
         let h = robot.hessian(&q);
         for (k, hk) in h.iter().enumerate() {
