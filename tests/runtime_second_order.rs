@@ -4,10 +4,10 @@
 
 use kinegen::acceleration::{resolved_acceleration, resolved_acceleration_step, Gains, Reference};
 use kinegen::adapters::{fk_isometry, jacobian_matrix};
+use kinegen::ik::XorShift64;
 use kinegen::manipulability::manipulability;
 use kinegen::redundancy::{gradient_projection, Projection};
 use kinegen::velocity::Damping;
-use kinegen::ik::XorShift64;
 use kinegen::{Kinematics, SecondOrderKinematics, SolveError};
 use kinegen_robots::{Panda, PlanarRrr, Ur5};
 use nalgebra::{SVector, Translation3, Vector3};
@@ -38,7 +38,10 @@ fn resolved_acceleration_gives_the_commanded_acceleration() {
     let mut rng = XorShift64::new(16);
     let mut checked = 0;
     for _ in 0..200 {
-        let (q, qd) = (vector::<6>(&mut rng, -3.0, 3.0), vector::<6>(&mut rng, -2.0, 2.0));
+        let (q, qd) = (
+            vector::<6>(&mut rng, -3.0, 3.0),
+            vector::<6>(&mut rng, -2.0, 2.0),
+        );
         let xdd = SVector::<f64, 6>::from(vector::<6>(&mut rng, -1.0, 1.0));
         if sigma_min(&ur5, &q) < damping.epsilon {
             continue;

@@ -46,6 +46,7 @@ pub struct Pose {
 
 impl Pose {
     /// From a row-major homogeneous transform.
+    #[inline]
     pub fn from_matrix(t: &[[f64; 4]; 4]) -> Pose {
         Pose {
             r: M3::from_fn(|i, j| t[i][j]),
@@ -54,6 +55,7 @@ impl Pose {
     }
 
     /// Whether every entry is finite.
+    #[inline]
     pub fn is_finite(&self) -> bool {
         self.r.iter().chain(self.p.iter()).all(|x| x.is_finite())
     }
@@ -61,6 +63,7 @@ impl Pose {
 
 /// The rotation about the unit axis `k` whose angle has sine `s` and cosine `c`
 /// (Rodrigues: `c I + s [k]× + (1 − c) k kᵀ`).
+#[inline]
 pub fn rot_sc(k: &V3, s: f64, c: f64) -> M3 {
     let t = 1.0 - c;
     let (x, y, z) = (k.x, k.y, k.z);
@@ -78,6 +81,7 @@ pub fn rot_sc(k: &V3, s: f64, c: f64) -> M3 {
 }
 
 /// The rotation by `theta` about the unit axis `k`.
+#[inline]
 pub fn rot(k: &V3, theta: f64) -> M3 {
     let (s, c) = sin_cos(theta);
     rot_sc(k, s, c)
@@ -98,12 +102,14 @@ pub struct Angle {
 
 impl Angle {
     /// `theta`, with its sine and cosine evaluated.
+    #[inline]
     pub fn new(theta: f64) -> Angle {
         let (sin, cos) = sin_cos(theta);
         Angle { theta, sin, cos }
     }
 
     /// The angle whose sine and cosine are proportional to `y` and `x` (`x² + y² > 0`).
+    #[inline]
     pub fn atan2(y: f64, x: f64) -> Angle {
         let r = sqrt(x * x + y * y);
         Angle {
@@ -114,6 +120,7 @@ impl Angle {
     }
 
     /// The rotation by this angle about the unit axis `k`.
+    #[inline]
     pub fn rot(&self, k: &V3) -> M3 {
         rot_sc(k, self.sin, self.cos)
     }
@@ -121,6 +128,7 @@ impl Angle {
 
 /// The points `a + s·u` and `b + t·v` closest to each other on two lines, or `None` when
 /// the lines are parallel (to `tol` in `|u × v|²`).
+#[inline]
 pub fn closest_points(a: &V3, u: &V3, b: &V3, v: &V3, tol: f64) -> Option<(V3, V3)> {
     let n = u.cross(v);
     let nn = n.norm_squared();
@@ -187,11 +195,13 @@ impl<const N: usize> Geometry<N> {
 }
 
 /// `|x|` with a floor, for relative tolerances.
+#[inline]
 pub(crate) fn scale(x: f64) -> f64 {
     abs(x).max(1e-300)
 }
 
 /// `√max(x, 0)`.
+#[inline]
 pub(crate) fn sqrt0(x: f64) -> f64 {
     sqrt(x.max(0.0))
 }

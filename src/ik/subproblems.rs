@@ -47,6 +47,7 @@ pub enum Fit {
 
 impl Fit {
     /// The weaker of two fits (least squares dominates, then free, then double).
+    #[inline]
     pub fn and(self, other: Fit) -> Fit {
         let rank = |f: Fit| match f {
             Fit::Exact => 0,
@@ -74,6 +75,7 @@ pub struct Roots {
 }
 
 impl Roots {
+    #[inline]
     fn one(angle: Angle, fit: Fit) -> Roots {
         Roots {
             angles: [angle, angle],
@@ -83,17 +85,20 @@ impl Roots {
     }
 
     /// The angles.
+    #[inline]
     pub fn as_slice(&self) -> &[Angle] {
         &self.angles[..self.n]
     }
 
     /// The angles' values.
+    #[inline]
     pub fn thetas(&self) -> impl Iterator<Item = f64> + '_ {
         self.as_slice().iter().map(|a| a.theta)
     }
 }
 
 /// `p − (k·p) k`: the part of `p` off the axis `k`.
+#[inline]
 fn off_axis(k: &V3, p: &V3) -> V3 {
     p - k * k.dot(p)
 }
@@ -104,25 +109,36 @@ fn off_axis(k: &V3, p: &V3) -> V3 {
 /// their component along `k`; free (`free` returned) when `p1` or `p2` lies on the axis.
 #[inline]
 pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
-    let (a, fit) = sp1_angle(p1, p2, k, free);
-    (a.theta, fit)
+    match sp1_sides(p1, p2, k) {
+        Some((y, x, fit)) => (atan2(y, x), fit),
+        None => (free, Fit::Free),
+    }
 }
 
 /// [`sp1`] with the sine and cosine of the angle (from the same products, no `sin`/`cos`
 /// call unless the angle is free).
 #[inline]
 pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
+    match sp1_sides(p1, p2, k) {
+        Some((y, x, fit)) => (Angle::atan2(y, x), fit),
+        None => (Angle::new(free), Fit::Free),
+    }
+}
+
+/// SP1's `θ = atan2(y, x)` as `(y, x)` and the fit; `None` when the angle is free.
+#[inline(always)]
+fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
     let (a, b) = (off_axis(k, p1), off_axis(k, p2));
     let (na, nb) = (a.norm_squared(), b.norm_squared());
     let s1 = scale(p1.norm_squared());
     let s2 = scale(p2.norm_squared());
     if na <= ON_AXIS * s1 || nb <= ON_AXIS * s2 {
-        return (Angle::new(free), Fit::Free);
+        return None;
     }
-    let theta = Angle::atan2(k.dot(&a.cross(&b)), a.dot(&b));
     let same = (na - nb).abs() <= 1e-9 * (na + nb)
         && (k.dot(p1) - k.dot(p2)).abs() <= 1e-9 * sqrt(s1 + s2);
-    (theta, if same { Fit::Exact } else { Fit::LeastSquares })
+    let fit = if same { Fit::Exact } else { Fit::LeastSquares };
+    Some((k.dot(&a.cross(&b)), a.dot(&b), fit))
 }
 
 /// `θ = φ ± atan2(√(r² − b²), b)` for `a cos θ + a' sin θ = b` written as
@@ -133,6 +149,7 @@ pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
 /// With `cos φ = a / r`, `sin φ = a' / r`, `cos d = b / r`, `sin d = √(r² − b²) / r`, the
 /// roots `φ ± d` have `cos = (a b ∓ a' √…) / r²` and `sin = (a' b ± a √…) / r²`: one
 /// `atan2` per root and no `sin`/`cos` for the rotations built from it.
+#[inline]
 fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> Roots {
     let rr = ca * ca + sa * sa;
     if rr <= ON_AXIS * scale(mag2) {
@@ -180,11 +197,13 @@ fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> R
 /// **SP4** — `θ` with `hᵀ rot(k, θ) p = d`: where the circle of `p` about `k` crosses the
 /// plane `hᵀ x = d`. Two roots, a double root (the circle touches the plane), least
 /// squares (it misses the plane), or free (the circle lies in a plane `hᵀ x = d`).
+#[inline]
 pub fn sp4(h: &V3, p: &V3, k: &V3, d: f64, free: f64) -> Roots {
     sp4_terms(h, p, k, d, d.abs(), free)
 }
 
 /// SP4 where `d` was computed from terms of size `terms` (its rounding error).
+#[inline]
 fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
     // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
     let pp = off_axis(k, p);
@@ -199,6 +218,7 @@ fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
 /// the sphere of radius `d` about `p2`. Two roots, a double root, least squares (the
 /// nearest distance to `d`), or free (the circle is a point, or centred on the sphere's
 /// axis).
+#[inline]
 pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
     // ‖rot p1 − p2‖² = ‖p1‖² + ‖p2‖² − 2 p2ᵀ rot(k, θ) p1 = d²  ⇔  p2ᵀ rot p1 = (…)/2
     let (n1, n2) = (p1.norm_squared(), p2.norm_squared());
@@ -210,6 +230,7 @@ pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
 /// about `k1` and of `p2` about `k2` meet (`k1 ∦ k2`). Up to two pairs; a double root when
 /// the circles touch; least squares when they miss (or `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free
 /// (the caller's value) when its vector lies on its axis.
+#[inline]
 pub fn sp2(
     p1: &V3,
     p2: &V3,
@@ -262,6 +283,7 @@ pub fn sp2(
 
 /// A least-squares SP1 inside a larger subproblem only reflects the outer fit (already
 /// counted there); a free one is a singularity.
+#[inline]
 fn mild(f: Fit) -> Fit {
     match f {
         Fit::LeastSquares => Fit::Exact,
@@ -270,6 +292,7 @@ fn mild(f: Fit) -> Fit {
 }
 
 /// `θ` wrapped into `(−π, π]`.
+#[inline]
 pub fn wrap(theta: f64) -> f64 {
     use core::f64::consts::{PI, TAU};
     // Solver angles come from atan2 and sums of a few of them: almost always within one
