@@ -56,17 +56,17 @@ fn wrist(h: &[V3; 3], r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) 
     let t5 = sp4(h4, h6, h5, h4.dot(&r36_h6), 0.0);
     for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
         let r5 = q5.rot(h5);
-        let (q4, f4) = sp1_angle(&(r5 * h6), &r36_h6, h4, free[0]);
+        let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
         let (q6, f6) = if f4 == Fit::Free {
             // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ r36.
-            let m = (q4.rot(h4) * r5).transpose() * r36;
+            let m = (rot(h4, q4) * r5).transpose() * r36;
             let x = orthogonal(h6);
             sp1(&x, &(m * x), h6, free[1])
         } else {
             // R6 (R36ᵀ h4) = R5ᵀ h4, since R36ᵀ h4 = R6ᵀ R5ᵀ h4.
             sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1])
         };
-        *o = ([q4.theta, q5.theta, q6], t5.fit.and(f4).and(f6));
+        *o = ([q4, q5.theta, q6], t5.fit.and(f4).and(f6));
     }
     t5.n
 }
