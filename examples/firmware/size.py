@@ -122,18 +122,27 @@ def main():
     for p in ("f64", "f32"):
         listed = ", ".join(f"{short(s)} {size.get(s, 0)}" for s in helpers[p])
         print(f"\n{p} routines: {listed}")
-    # The closed-form IK (f64 only): its wrapper, and what it reaches beyond the f64 methods'
-    # routines above (the subproblem solvers, `finish`, the fk its residual check calls, …).
-    ik_root = "ur5_ik_f64"
-    if ik_root in size:
-        seen = set(helpers["f64"]) | {f"ur5_{m}_f64" for m in METHODS}
+    # The closed-form IK, f64 and f32 (the f32 one solves in f64): each wrapper, and what it
+    # reaches beyond the three methods' routines of its precision above (the subproblem
+    # solvers, `finish`, the residual check, …); and what both share.
+    reached = {}
+    for p in ("f64", "f32"):
+        ik_root = f"ur5_ik_{p}"
+        if ik_root not in size:
+            continue
+        seen = set(helpers[p]) | {f"ur5_{m}_{p}" for m in METHODS}
         own = sorted(reach(graph, {ik_root}) - seen - {ik_root}, key=lambda s: -size.get(s, 0))
+        reached[p] = set(own)
         n_own = sum(size.get(s, 0) for s in own)
-        print(f"\n| `ik` (f64, all solutions) | bytes |\n|---|---:|")
-        print(f"| wrapper `ur5_ik_f64` | {size[ik_root]} |")
+        print(f"\n| `ik` ({p}, all solutions) | bytes |\n|---|---:|")
+        print(f"| wrapper `{ik_root}` | {size[ik_root]} |")
         print(f"| routines only `ik` reaches | {n_own} |")
         print(f"| **total added by `ik`** | **{size[ik_root] + n_own}** |")
-        print("\nik routines: " + ", ".join(f"{short(s)} {size.get(s, 0)}" for s in own))
+        print(f"\n{p} ik routines: " + ", ".join(f"{short(s)} {size.get(s, 0)}" for s in own))
+    if len(reached) == 2:
+        shared = reached["f64"] & reached["f32"]
+        print(f"\nroutines both `ik`s reach (counted in both totals above): "
+              f"{sum(size.get(s, 0) for s in shared)} bytes")
     print(f"\nwhole image: {subprocess.run([tool('llvm-size'), elf], capture_output=True, text=True).stdout.strip()}")
 
 

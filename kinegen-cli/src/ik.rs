@@ -42,16 +42,10 @@ impl<'a> Solver<'a> {
     /// The solver of `chain`, or why it has none (exit 2).
     pub fn new(chain: &'a Chain, derived: &'a Derived) -> Result<Self, CliError> {
         let ik = match &derived.ik {
-            Some(Ok(ik)) => ik,
-            Some(Err(why)) => {
+            Ok(ik) => ik,
+            Err(why) => {
                 return Err(CliError::Usage(format!(
                     "`{}` has no closed-form inverse kinematics: {why}",
-                    chain.name
-                )))
-            }
-            None => {
-                return Err(CliError::Usage(format!(
-                    "`{}` is an f32 robot: closed-form IK is generated for f64 robots",
                     chain.name
                 )))
             }
@@ -460,7 +454,7 @@ fn numbers(v: &Value, rows: usize, cols: usize) -> Vec<f64> {
 /// `kinegen show ROBOT --what ik`.
 pub fn show(chain: &Chain, derived: &Derived) -> String {
     match &derived.ik {
-        Some(Ok(ik)) => {
+        Ok(ik) => {
             let mut s = format!("{} — closed-form IK: {}\n\n", chain.name, ik.plan.name);
             for (i, step) in ik.plan.steps.iter().enumerate() {
                 let _ = writeln!(s, "{}. {step}", i + 1);
@@ -472,7 +466,6 @@ pub fn show(chain: &Chain, derived: &Derived) -> String {
             );
             s
         }
-        Some(Err(why)) => format!("{} — no closed-form IK: {why}\n", chain.name),
-        None => format!("{} — no closed-form IK: f32 robots get none\n", chain.name),
+        Err(why) => format!("{} — no closed-form IK: {why}\n", chain.name),
     }
 }

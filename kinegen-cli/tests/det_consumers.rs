@@ -45,7 +45,7 @@ fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
         det: None,
         second,
         det_gradient: None,
-        ik: None,
+        ik: Err("not derived in this test".into()),
     };
     let v = eval::values(&chain, &derived, &dets, &q, None);
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/planar_rr.toml");

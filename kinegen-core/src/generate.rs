@@ -18,7 +18,6 @@ use crate::kinematics::ik::{self, IkModel};
 use crate::kinematics::model::Model;
 use crate::kinematics::second_order::{second_order, SecondOrder};
 use crate::model::options::{Deadline, Options};
-use crate::model::robot::Scalar;
 use crate::simplify::order::cheapest;
 use crate::simplify::pass::simplify_second_order;
 
@@ -58,9 +57,9 @@ pub struct Derived {
     /// The gradient of the closed-form determinant and of its factors (`None`: no closed
     /// form; `Err`: why not).
     pub det_gradient: Option<Result<DetGradient, String>>,
-    /// Closed-form IK (`Err`: why no family fits; `None`: not attempted — f32 robots,
-    /// whose runtime solvers are f64 only).
-    pub ik: Option<Result<IkModel, String>>,
+    /// Closed-form IK (`Err`: why no family fits). An f32 robot's is solved in f64 at run
+    /// time (see `emit::ik`).
+    pub ik: Result<IkModel, String>,
 }
 
 /// Generate the Rust item for a chain, within `options.budget` (its `time_ms` counts
@@ -115,7 +114,7 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
         _ => None,
     };
     // The IK family, decided exactly from the axes at q = 0, and its geometry.
-    let ik = (chain.scalar == Scalar::F64).then(|| ik::model(chain, options.budget.max_terms()));
+    let ik = ik::model(chain, options.budget.max_terms());
     Derived {
         model,
         det,

@@ -31,6 +31,17 @@ snapshot! {
     panda => "panda.toml",
 }
 
+/// The UR5 in single precision (`scalar = "f32"`): f32 kinematics, and the closed-form
+/// IK with f32 poses and joint values, solved in f64.
+#[test]
+fn ur5_f32() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots/ur5.toml");
+    let (mut robot, options) = toml_file::load_file(&path).unwrap();
+    robot.scalar = kinegen_core::model::robot::Scalar::F32;
+    let g = generate(&robot.chain(), &ItemHeader::public("Ur5F32"), &options);
+    insta::assert_snapshot!(g.pretty());
+}
+
 #[test]
 fn generation_is_deterministic() {
     for file in ["ur5.toml", "panda.toml", "stanford.toml"] {

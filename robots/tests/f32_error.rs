@@ -19,9 +19,12 @@ use kinegen_robots::*;
 const SAMPLES: usize = 20_000;
 
 /// The f32 twins: the same TOML files with `scalar: f32` overriding the file's scalar.
+/// (Their closed-form IK is generated too, so the arms without one get the same
+/// compile-time note as their f64 originals: allowed, as in `src/lib.rs`.)
 macro_rules! f32_twin {
     ($($name:ident = $file:literal;)*) => {$(
         kinegen::kinematics! {
+            #[allow(deprecated)]
             struct $name = $file;
             scalar: f32,
         }

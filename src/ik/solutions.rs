@@ -50,19 +50,22 @@ impl<const N: usize, const K: usize> Candidates<N, K> {
     }
 }
 
-/// One IK solution (a branch: shoulder, elbow, wrist choice).
+/// One IK solution (a branch: shoulder, elbow, wrist choice), in the robot's scalar `T`
+/// (`f64`, or `f32` for a `scalar: f32` robot, whose solve runs in f64 and is rounded
+/// once at the end: [`IkSolutions::to_f32`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct IkBranch<const N: usize> {
+pub struct IkBranch<const N: usize, T = f64> {
     /// Joint values (revolute joints wrapped by whole turns into the limits where that
     /// helps, else into `(−π, π]`).
-    pub q: [f64; N],
+    pub q: [T; N],
     /// `fk(q)` reaches the pose (to [`EXACT_TOLERANCE`]). `false`: the pose is out of
     /// reach and `q` is the nearest the solver found (least squares), see `residual`.
     pub exact: bool,
     /// `max |fk(q) − pose|` over the 12 entries of the top three rows, when it was
     /// measured: for least-squares branches and singular ones. `0.0` for the branches
-    /// every subproblem solved exactly (their error is rounding only).
-    pub residual: f64,
+    /// every subproblem solved exactly (their error is rounding only). Measured in f64
+    /// for every robot (see [`Check`]).
+    pub residual: T,
     /// Bit `i` set: entry `i` of the robot's `SINGULARITIES` vanishes at `q` (to
     /// [`SINGULAR_TOLERANCE`]); checked for the branches a subproblem found singular.
     pub singular: u32,
@@ -73,10 +76,11 @@ pub struct IkBranch<const N: usize> {
     pub within_limits: bool,
 }
 
-/// All solutions of one pose: at most `K`, no allocation.
+/// All solutions of one pose: at most `K`, no allocation; joint values in `T` (`f64`, or
+/// `f32` for a `scalar: f32` robot).
 #[derive(Clone, Copy, Debug)]
-pub struct IkSolutions<const N: usize, const K: usize> {
-    items: [IkBranch<N>; K],
+pub struct IkSolutions<const N: usize, const K: usize, T = f64> {
+    items: [IkBranch<N, T>; K],
     len: usize,
 }
 
@@ -90,14 +94,14 @@ pub const SINGULAR_TOLERANCE: f64 = 1e-9;
 /// are the same configuration.
 pub const SAME_CONFIGURATION: f64 = 1e-9;
 
-impl<const N: usize, const K: usize> IkSolutions<N, K> {
+impl<const N: usize, const K: usize, T: Copy + Default> IkSolutions<N, K, T> {
     /// No solutions.
     pub fn empty() -> Self {
         IkSolutions {
             items: [IkBranch {
-                q: [0.0; N],
+                q: [T::default(); N],
                 exact: false,
-                residual: 0.0,
+                residual: T::default(),
                 singular: 0,
                 at_singularity: false,
                 within_limits: false,
@@ -117,20 +121,22 @@ impl<const N: usize, const K: usize> IkSolutions<N, K> {
     }
 
     /// The solutions.
-    pub fn as_slice(&self) -> &[IkBranch<N>] {
+    pub fn as_slice(&self) -> &[IkBranch<N, T>] {
         &self.items[..self.len]
     }
 
     /// The solutions, in order.
-    pub fn iter(&self) -> core::slice::Iter<'_, IkBranch<N>> {
+    pub fn iter(&self) -> core::slice::Iter<'_, IkBranch<N, T>> {
         self.as_slice().iter()
     }
 
     /// The exact solutions.
-    pub fn exact(&self) -> impl Iterator<Item = &IkBranch<N>> {
+    pub fn exact(&self) -> impl Iterator<Item = &IkBranch<N, T>> {
         self.iter().filter(|b| b.exact)
     }
+}
 
+impl<const N: usize, const K: usize> IkSolutions<N, K> {
     /// The exact solution nearest to `q` (joint-space distance, whole turns of revolute
     /// joints chosen nearest to `q` within `limits`), as joint values; `None` when there
     /// is no exact solution.
@@ -140,22 +146,31 @@ impl<const N: usize, const K: usize> IkSolutions<N, K> {
         revolute: &[bool; N],
         limits: &[[f64; 2]; N],
     ) -> Option<[f64; N]> {
-        let mut best: Option<([f64; N], f64)> = None;
-        for b in self.exact() {
-            let mut x = b.q;
-            let mut d2 = 0.0;
-            for i in 0..N {
-                if revolute[i] {
-                    x[i] = turn_near(x[i], q[i], limits[i]);
-                }
-                d2 += (x[i] - q[i]) * (x[i] - q[i]);
-            }
-            if best.is_none_or(|(_, d)| d2 < d) {
-                best = Some((x, d2));
-            }
-        }
-        best.map(|(x, _)| x)
+        nearest_of(self.exact().map(|b| b.q), q, revolute, limits)
     }
+}
+
+/// The one of `candidates` nearest to `q` (see [`IkSolutions::nearest`]).
+fn nearest_of<const N: usize>(
+    candidates: impl Iterator<Item = [f64; N]>,
+    q: &[f64; N],
+    revolute: &[bool; N],
+    limits: &[[f64; 2]; N],
+) -> Option<[f64; N]> {
+    let mut best: Option<([f64; N], f64)> = None;
+    for mut x in candidates {
+        let mut d2 = 0.0;
+        for i in 0..N {
+            if revolute[i] {
+                x[i] = turn_near(x[i], q[i], limits[i]);
+            }
+            d2 += (x[i] - q[i]) * (x[i] - q[i]);
+        }
+        if best.is_none_or(|(_, d)| d2 < d) {
+            best = Some((x, d2));
+        }
+    }
+    best.map(|(x, _)| x)
 }
 
 /// `x + k·2π` nearest to `target` within `[lo, hi]` (or nearest overall if none is).
@@ -350,4 +365,176 @@ fn same<const N: usize>(a: &[f64; N], b: &[f64; N], revolute: &[bool; N]) -> boo
         let d = if revolute[i] { wrap(d) } else { d };
         d.abs() <= SAME_CONFIGURATION
     })
+}
+
+// Single precision: a `scalar: f32` robot solves in f64 and rounds once.
+//
+// Its generated `ik` widens the pose, evaluates `ik_geometry` in f64 from the widened
+// parameters, runs the same family solver and `finish` (with a `Check` that measures the
+// residual on the geometry's product of exponentials in f64, not with the f32 `fk`), and
+// only then rounds: the subproblems' double-root and on-axis tests need f64 (in f32 a
+// singular pose's double root would split by ~1e-3 rad), and the exactness test
+// ([`EXACT_TOLERANCE`], 1e-10) is far below f32's rounding (~1e-7).
+
+/// Largest residual (measured in f64) of a branch that counts as exact for an f32 robot.
+///
+/// An f32 pose is not a pose to 1e-10: its rotation is orthonormal and its position
+/// consistent only to f32 rounding, about `4 ε · reach` when it comes from the f32 `fk`
+/// (5.7e-7 for the UR5, `robots/tests/f32_error.rs`; ε = 2⁻²³). A singular or
+/// least-squares branch of such a pose meets it to that amplified by the tangency, not to
+/// [`EXACT_TOLERANCE`]: over 10 000 f32 UR5 poses (`tests/ik_closed_form_f32.rs`) the
+/// largest f64 residual of a branch that should be exact was 4.7e-6, so 1e-5 leaves a
+/// margin of about 2. The price: a pose out of reach by less than 1e-5 (m, or the rotation
+/// entries) counts as reached.
+pub const EXACT_TOLERANCE_F32: f64 = 1e-5;
+
+impl<const N: usize, const K: usize> IkSolutions<N, K> {
+    /// The same solutions with joint values and residuals rounded to `f32` (round to
+    /// nearest), for an f32 robot: a branch is exact when its residual is within
+    /// [`EXACT_TOLERANCE_F32`], and one that became exact only so (a least-squares fit of
+    /// an f32 pose at a tangency) is flagged `at_singularity`. Rounding is monotone, so a
+    /// value within f32 limits (widened) stays within them.
+    /// Two branches closer than f32 can tell apart become one (the first).
+    pub fn to_f32(&self) -> IkSolutions<N, K, f32> {
+        let mut out: IkSolutions<N, K, f32> = IkSolutions::empty();
+        for b in self.as_slice() {
+            let q = b.q.map(|x| x as f32);
+            if out.as_slice().iter().any(|o| o.q == q) {
+                continue;
+            }
+            let exact = b.exact || b.residual <= EXACT_TOLERANCE_F32;
+            let Some(slot) = out.items.get_mut(out.len) else {
+                break;
+            };
+            *slot = IkBranch {
+                q,
+                exact,
+                residual: b.residual as f32,
+                singular: b.singular,
+                at_singularity: b.at_singularity || (exact && !b.exact),
+                within_limits: b.within_limits,
+            };
+            out.len += 1;
+        }
+        out
+    }
+}
+
+impl<const N: usize, const K: usize> IkSolutions<N, K, f32> {
+    /// The exact solution nearest to `q` (see [`IkSolutions::nearest`]): chosen in f64
+    /// from the widened values, then rounded to `f32`.
+    pub fn nearest(
+        &self,
+        q: &[f32; N],
+        revolute: &[bool; N],
+        limits: &[[f32; 2]; N],
+    ) -> Option<[f32; N]> {
+        let limits = limits.map(|l| l.map(f64::from));
+        let q = q.map(f64::from);
+        nearest_of(
+            self.exact().map(|b| b.q.map(f64::from)),
+            &q,
+            revolute,
+            &limits,
+        )
+        .map(|x| x.map(|v| v as f32))
+    }
+}
+
+/// `pose` with its rotation replaced by the nearest rotation (two steps of the polar
+/// iteration `R ← (R + R⁻ᵀ)/2`, quadratic: a rotation off by 1e-7 comes out orthonormal
+/// to f64 rounding). For an f32 pose, widened: its rotation is orthonormal only to f32
+/// rounding, and a wrist solved on a non-orthonormal rotation (`h2ᵀ R h6` a little over 1)
+/// turns that ~1e-7 into a least-squares angle of ~2e-4 rad. A matrix without an inverse
+/// is left as it is (the solvers then fit it in least squares).
+pub fn orthonormalized(pose: &Pose) -> Pose {
+    let mut r = pose.r;
+    for _ in 0..2 {
+        match r.try_inverse() {
+            Some(inv) => r = (r + inv.transpose()) * 0.5,
+            None => break,
+        }
+    }
+    Pose { r, p: pose.p }
+}
+
+/// `pose` as a row-major homogeneous transform (bottom row `0 0 0 1`): what [`residual`]
+/// and [`task_residual`] read, for a pose from [`Geometry::fk`](super::geometry::Geometry::fk).
+pub fn pose_matrix(pose: &Pose) -> [[f64; 4]; 4] {
+    let (r, p) = (&pose.r, &pose.p);
+    [
+        [r[(0, 0)], r[(0, 1)], r[(0, 2)], p[0]],
+        [r[(1, 0)], r[(1, 1)], r[(1, 2)], p[1]],
+        [r[(2, 0)], r[(2, 1)], r[(2, 2)], p[2]],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::geometry::{M3, V3};
+
+    /// A solution set with the given `(q, exact, residual)` branches.
+    fn solutions(branches: &[([f64; 2], bool, f64)]) -> IkSolutions<2, 4> {
+        let mut s = IkSolutions::empty();
+        for (slot, &(q, exact, residual)) in s.items.iter_mut().zip(branches) {
+            *slot = IkBranch {
+                q,
+                exact,
+                residual,
+                singular: 0,
+                at_singularity: false,
+                within_limits: true,
+            };
+        }
+        s.len = branches.len();
+        s
+    }
+
+    #[test]
+    fn to_f32_rounds_merges_and_uses_the_f32_tolerance() {
+        let s = solutions(&[
+            ([0.1, 2.0], true, 0.0),
+            // Rounds to the same f32 values as the first: dropped.
+            ([0.1 + 1e-12, 2.0], true, 0.0),
+            // A least-squares fit within f32 rounding of the pose: exact in f32, singular.
+            ([-1.0, 0.5], false, 3e-7),
+            // Out of reach.
+            ([1.5, -0.5], false, 1e-3),
+        ]);
+        let t = s.to_f32();
+        assert_eq!(t.len(), 3);
+        let b = t.as_slice();
+        assert_eq!(b[0].q, [0.1f32, 2.0]);
+        assert!(b[0].exact && !b[0].at_singularity);
+        assert!(b[1].exact && b[1].at_singularity && b[1].residual == 3e-7f32);
+        assert!(!b[2].exact && !b[2].at_singularity);
+    }
+
+    #[test]
+    fn f32_nearest_chooses_in_f64_and_rounds() {
+        let s = solutions(&[([0.1, 2.0], true, 0.0), ([3.0, -2.0], true, 0.0)]).to_f32();
+        let tau = core::f32::consts::TAU;
+        let limits = [[-2.0 * tau, 2.0 * tau]; 2];
+        // Whole turns nearest to q: 3.0 − 2π for joint 1.
+        let near = s.nearest(&[-3.2, -2.1], &[true, true], &limits).unwrap();
+        assert_eq!(near, [(3.0 - TAU) as f32, -2.0]);
+        assert!(IkSolutions::<2, 4, f32>::empty()
+            .nearest(&[0.0; 2], &[true; 2], &limits)
+            .is_none());
+    }
+
+    #[test]
+    fn pose_matrix_is_row_major_homogeneous() {
+        let pose = Pose {
+            r: M3::new(0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0),
+            p: V3::new(0.5, -0.25, 2.0),
+        };
+        let t = pose_matrix(&pose);
+        assert_eq!(t[0], [0.0, -1.0, 0.0, 0.5]);
+        assert_eq!(t[1], [1.0, 0.0, 0.0, -0.25]);
+        assert_eq!(t[3], [0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(residual(&t, &pose), 0.0);
+    }
 }

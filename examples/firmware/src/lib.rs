@@ -28,7 +28,7 @@ pub const CONFIGS: [[f64; 6]; 5] = [
 ];
 
 /// First line the firmware prints: tells the check it reads this format.
-pub const HEADER: &str = "kinegen-firmware v2";
+pub const HEADER: &str = "kinegen-firmware v3";
 /// Last line the firmware prints when every configuration was reported.
 pub const TRAILER: &str = "end";
 

@@ -1,19 +1,19 @@
 //! UR5 forward kinematics, Jacobian and determinant in f64 and f32, and the closed-form
-//! inverse kinematics (all solutions, f64) on a Cortex-M4F,
+//! inverse kinematics (all solutions, f64 and f32) on a Cortex-M4F,
 //! reported over semihosting (QEMU `mps2-an386`; see README.md).
 //!
 //! Output, one record per line, fields separated by one space, numbers in Rust's `{:?}`
 //! form (shortest text that reads back to the same float):
 //!
 //! ```text
-//! kinegen-firmware v2
+//! kinegen-firmware v3
 //! cpacr 0x00f00000                      FPU access bits (CP10/CP11 full access = 0x00f00000)
 //! <f64|f32> <case> q   <6 joint values>
 //! <f64|f32> <case> fk  <16 entries of T, row-major>
 //! <f64|f32> <case> jac <36 entries of J, row-major>
 //! <f64|f32> <case> det <det J>
-//! f64 <case> ik <count> then per solution: <1 if exact else 0> <6 joint values>
-//!                                       (every solution of `ik(fk(q))`)
+//! <f64|f32> <case> ik <count> then per solution: <1 if exact else 0> <6 joint values>
+//!                                       (every solution of `ik(fk(q))`; f32: solved in f64)
 //! end
 //! ```
 //!
@@ -56,6 +56,12 @@ mod firmware {
     #[no_mangle]
     #[inline(never)]
     pub fn ur5_ik_f64(r: &Ur5, pose: &[[f64; 4]; 4]) -> kinegen::ik::IkSolutions<6, 8> {
+        r.ik(pose)
+    }
+    /// `Ur5F32::ik` (f32 pose and joint values, solved in f64: soft-float).
+    #[no_mangle]
+    #[inline(never)]
+    pub fn ur5_ik_f32(r: &Ur5F32, pose: &[[f32; 4]; 4]) -> kinegen::ik::IkSolutions<6, 8, f32> {
         r.ik(pose)
     }
     /// `Ur5F32::fk` (f32, on the FPU).
@@ -101,11 +107,14 @@ mod firmware {
         let _ = writeln!(out);
     }
 
-    /// The solutions as the `ik` record lists them (see `kinegen_firmware::ik_record`).
-    fn ik_record(s: &kinegen::ik::IkSolutions<6, 8>) -> impl Iterator<Item = f64> + '_ {
-        core::iter::once(s.len() as f64).chain(
+    /// The solutions as the `ik` record lists them: the count, then per solution the
+    /// exact flag and the joint values.
+    fn ik_record<T: Copy + Default + From<u8>>(
+        s: &kinegen::ik::IkSolutions<6, 8, T>,
+    ) -> impl Iterator<Item = T> + '_ {
+        core::iter::once(T::from(s.len() as u8)).chain(
             s.iter()
-                .flat_map(|b| core::iter::once(if b.exact { 1.0 } else { 0.0 }).chain(b.q)),
+                .flat_map(|b| core::iter::once(T::from(u8::from(b.exact))).chain(b.q)),
         )
     }
 
@@ -151,7 +160,13 @@ mod firmware {
             );
 
             let pose = black_box(ur5_fk_f64(&r64, &q));
-            record(&mut out, "f64", case, "ik", ik_record(&ur5_ik_f64(&r64, &pose)));
+            record(
+                &mut out,
+                "f64",
+                case,
+                "ik",
+                ik_record(&ur5_ik_f64(&r64, &pose)),
+            );
 
             let q = black_box(to_f32(&q));
             record(&mut out, "f32", case, "q", q);
@@ -175,6 +190,14 @@ mod firmware {
                 case,
                 "det",
                 [ur5_jacobian_det_f32(&r32, &q)],
+            );
+            let pose = black_box(ur5_fk_f32(&r32, &q));
+            record(
+                &mut out,
+                "f32",
+                case,
+                "ik",
+                ik_record(&ur5_ik_f32(&r32, &pose)),
             );
         }
         let _ = writeln!(out, "{TRAILER}");

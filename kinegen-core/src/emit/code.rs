@@ -66,6 +66,8 @@ pub struct Coder<'a> {
     /// Terms of the longest of them.
     longest_sum: usize,
     scalar: Scalar,
+    /// Parameters are `f32` fields read into f64 code (see [`Coder::in_f64`]).
+    widen: bool,
 }
 
 impl<'a> Coder<'a> {
@@ -79,6 +81,25 @@ impl<'a> Coder<'a> {
             sym,
             sum_names,
             scalar: chain.scalar,
+            widen: false,
+        }
+    }
+
+    /// This coder writing f64 code whatever the chain's scalar: an f32 robot's
+    /// parameters are read with `f64::from(self.name)`, literals and `sin_cos` are f64.
+    /// (The closed-form IK of an f32 robot solves in f64.)
+    pub fn in_f64(mut self) -> Self {
+        self.widen = self.scalar == Scalar::F32;
+        self.scalar = Scalar::F64;
+        self
+    }
+
+    /// How the body reads parameter `name` from `self`.
+    fn param(&self, name: &str) -> String {
+        if self.widen {
+            format!("f64::from(self.{name})")
+        } else {
+            format!("self.{name}")
         }
     }
 
@@ -114,9 +135,9 @@ impl<'a> Coder<'a> {
         for (name, c) in &v.params {
             let c = rat_to_f64(c);
             parts.push(if c == 1.0 {
-                format!("self.{name}")
+                self.param(name)
             } else {
-                format!("{} * self.{name}", self.lit(c))
+                format!("{} * {}", self.lit(c), self.param(name))
             });
         }
         if k != 0.0 || parts.is_empty() {
@@ -174,7 +195,8 @@ impl<'a> Coder<'a> {
         used_vars.sort_unstable();
         for (name, v) in &self.sym.param_vars {
             if used_vars.contains(v) {
-                body.lets.push(format!("let {name} = self.{name};"));
+                body.lets
+                    .push(format!("let {name} = {};", self.param(name)));
             }
         }
         for (j, v) in &self.sym.joint_vars {

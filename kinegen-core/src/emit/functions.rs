@@ -7,7 +7,7 @@ use crate::chain::Chain;
 use crate::emit::code::{Body, Coder, OpCount};
 use crate::emit::docs::{formula_doc, matrix_names};
 use crate::emit::formulas::Formulas;
-use crate::emit::ik::{items as ik_items, CheckImpl};
+use crate::emit::ik::{items as ik_items, CheckImpl, SingularCheck};
 pub use crate::emit::item::{Const, Item, Method, MethodBody};
 use crate::kinematics::det::closed_form::DetModel;
 use crate::kinematics::det::gradient::DetGradient;
@@ -70,14 +70,14 @@ pub enum DetOf {
 
 /// The generated type's contents for `chain`, from its simplified `model`, its
 /// determinant (`None` when the Jacobian is not square), its second-order outputs, the
-/// determinant's gradient and its closed-form IK (`None`: not attempted).
+/// determinant's gradient and its closed-form IK (`Err`: why none).
 pub fn functions(
     chain: &Chain,
     model: &Model,
     det: &Option<Result<DetModel, String>>,
     second: &SecondOrder,
     det_gradient: &Option<Result<DetGradient, String>>,
-    ik: &Option<Result<IkModel, String>>,
+    ik: &Result<IkModel, String>,
 ) -> Functions {
     let coder = Coder::new(chain, &model.sym);
     let mut out = Out {
@@ -106,19 +106,28 @@ pub fn functions(
         .iter()
         .any(|i| matches!(i, Item::Method(m) if m.name == "det_gradient"));
     let check = match ik {
-        Some(Ok(m)) => {
-            let factors = matches!(det, Some(Ok(_)));
-            let (items, check) = ik_items(chain, m, factors);
+        Ok(m) => {
+            let singular = match det {
+                // An f32 robot's IK solves in f64: its singular factors are evaluated in f64
+                // too, so they are tested at the same `SINGULAR_TOLERANCE` as an f64 robot's.
+                Some(Ok(d)) if chain.scalar == Scalar::F32 => {
+                    let factors: Vec<_> = d.factors.iter().map(|f| f.node).collect();
+                    SingularCheck::Widened(Coder::new(chain, &model.sym).in_f64().body(&factors))
+                }
+                Some(Ok(_)) => SingularCheck::Factors,
+                _ => SingularCheck::None,
+            };
+            let (items, check) = ik_items(chain, m, singular);
             out.items.extend(items);
             Some(check)
         }
-        Some(Err(why)) if why != crate::kinematics::ik::family::OUT_OF_DOMAIN => {
+        Err(why) if why != crate::kinematics::ik::family::OUT_OF_DOMAIN => {
             out.notes.push(format!(
                 "no closed-form inverse kinematics ({why}); the numerical solvers of `kinegen::ik` serve this robot"
             ));
             None
         }
-        _ => None,
+        Err(_) => None,
     };
     let fields = chain
         .params

@@ -1,32 +1,67 @@
 //! The closed-form IK methods of a generated type: `ik` (or `ik_with` for a 7-joint arm),
 //! `ik_near`, `ik_seeded`, `ik_geometry`, the constants `IK_FAMILY`, `IK_STEPS` and
 //! `REVOLUTE`, and what the runtime's `finish` step needs (`Check`).
+//!
+//! An f32 robot gets the same methods with f32 poses and joint values, solved in f64: the
+//! pose, the free joints and the limits are widened, `ik_geometry` is f64 code reading the
+//! widened parameters, the family solver and `finish` run in f64 (the `Check` measures
+//! the residual on the geometry's product of exponentials and the singular factors in
+//! f64), and the solutions are rounded once (`IkSolutions::to_f32`).
 
 use crate::chain::Chain;
-use crate::emit::code::Coder;
+use crate::emit::code::{Body, Coder};
 use crate::emit::item::{Const, Item, Method, MethodBody};
 use crate::kinematics::ik::family::Family;
 use crate::kinematics::ik::IkModel;
-use crate::model::robot::{JointKind, TaskRow};
+use crate::model::robot::{JointKind, Scalar, TaskRow};
+
+/// How the `Check` impl flags the singular factors that vanish.
+#[derive(Clone, Debug)]
+pub enum SingularCheck {
+    /// No closed-form determinant: no bits.
+    None,
+    /// `vanishing(&self.singular_factors(q))` (an f64 robot).
+    Factors,
+    /// The singular factors as f64 code (an f32 robot): its `lets`, then the factors.
+    Widened(Body),
+}
 
 /// The `impl ::kinegen::ik::solutions::Check<N>` the generated type gets.
 #[derive(Clone, Debug)]
 pub struct CheckImpl {
     /// Task rows the residual compares (`None`: the whole pose).
     pub task_rows: Option<Vec<usize>>,
-    /// Whether the type has `singular_factors` (a closed-form determinant).
-    pub factors: bool,
+    /// How singular branches are flagged.
+    pub singular: SingularCheck,
     /// The joint a 7-joint arm's closed form locks.
     pub locked: Option<usize>,
+    /// The robot's scalar: an f32 robot's residual is measured on `ik_geometry().fk`
+    /// in f64 instead of its f32 `fk`.
+    pub scalar: Scalar,
 }
 
-/// The IK items and the `Check` impl for `chain`.
-pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, CheckImpl) {
+/// The paragraph an f32 robot's `ik` doc adds.
+const SOLVED_IN_F64: &str = "Solved in f64, returned in f32: the pose is widened, the \
+     geometry is evaluated in f64 from the (widened) parameters ([`Self::ik_geometry`]), and the \
+     subproblems, the exactness check (residual on the geometry's product of exponentials, \
+     `EXACT_TOLERANCE` 1e-10) and the singular factors run in f64; the joint values are rounded \
+     to f32 once at the end. In f32 the double-root and on-axis tests would fail (a singular \
+     pose's double root splits by ~1e-3 rad) and no branch could be checked exact (f32 rounding \
+     is ~1e-7). The f32 `fk` of a solution meets the pose to f32 rounding.";
+
+/// The IK items and the `Check` impl for `chain`; `singular` says how `Check` flags
+/// singular factors.
+pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<Item>, CheckImpl) {
     let n = chain.dof();
     let plan = &model.plan;
     let k = plan.max_solutions;
-    let ty = format!("::kinegen::ik::IkSolutions<{n}, {k}>");
-    let pose = "pose: &[[f64; 4]; 4]";
+    let f = scalar_name(chain.scalar);
+    let ty = match chain.scalar {
+        Scalar::F64 => format!("::kinegen::ik::IkSolutions<{n}, {k}>"),
+        Scalar::F32 => format!("::kinegen::ik::IkSolutions<{n}, {k}, f32>"),
+    };
+    let pose = format!("pose: &[[{f}; 4]; 4]");
+    let pose = pose.as_str();
     let mut items = Vec::new();
     let steps: Vec<String> = plan
         .steps
@@ -39,9 +74,13 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
          Each solution is flagged exact or least squares (unreachable pose: the nearest, with its \
          residual), singular (which entries of `SINGULARITIES` vanish), and within `LIMITS`; \
          revolute joints are wrapped by whole turns into the limits where that helps. No \
-         allocation, no panic: a non-finite pose gives no solutions.",
+         allocation, no panic: a non-finite pose gives no solutions.{}",
         plan.name,
-        steps.join("\n")
+        steps.join("\n"),
+        match chain.scalar {
+            Scalar::F64 => String::new(),
+            Scalar::F32 => format!("\n\n{SOLVED_IN_F64}"),
+        }
     );
     let custom =
         |args: String, lets: Vec<String>, result: String| MethodBody::Custom { args, lets, result };
@@ -62,9 +101,9 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
                     .into(),
                 name: "ik_near",
                 rates: false,
-                ret: format!("::core::option::Option<[f64; {n}]>"),
+                ret: format!("::core::option::Option<[{f}; {n}]>"),
                 body: custom(
-                    format!("{pose}, q_current: &[f64; {n}]"),
+                    format!("{pose}, q_current: &[{f}; {n}]"),
                     vec![],
                     "self.ik_seeded(pose, q_current).nearest(q_current, &Self::REVOLUTE, &Self::LIMITS)".into(),
                 ),
@@ -82,7 +121,7 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
                 rates: false,
                 ret: ty.clone(),
                 body: custom(
-                    format!("{pose}, q_locked: f64"),
+                    format!("{pose}, q_locked: {f}"),
                     vec![],
                     format!("self.ik_seeded(pose, q_locked, &[0.0; {n}])"),
                 ),
@@ -95,9 +134,9 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
                 ),
                 name: "ik_near",
                 rates: false,
-                ret: format!("::core::option::Option<[f64; {n}]>"),
+                ret: format!("::core::option::Option<[{f}; {n}]>"),
                 body: custom(
-                    format!("{pose}, q_current: &[f64; {n}]"),
+                    format!("{pose}, q_current: &[{f}; {n}]"),
                     vec![],
                     format!(
                         "self.ik_seeded(pose, q_current[{locked}], q_current).nearest(q_current, &Self::REVOLUTE, &Self::LIMITS)"
@@ -138,10 +177,18 @@ pub fn items(chain: &Chain, model: &IkModel, factors: bool) -> (Vec<Item>, Check
         items,
         CheckImpl {
             task_rows,
-            factors,
+            singular,
             locked: plan.locked,
+            scalar: chain.scalar,
         },
     )
+}
+
+fn scalar_name(scalar: Scalar) -> &'static str {
+    match scalar {
+        Scalar::F64 => "f64",
+        Scalar::F32 => "f32",
+    }
 }
 
 /// `ik_seeded`: the solver call, then `finish`.
@@ -149,11 +196,26 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     let n = chain.dof();
     let family = &model.plan.family;
     let solver = format!("::kinegen::ik::families::{}", family.solver());
-    let mut lets = vec![
-        "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);".to_string(),
+    let f = scalar_name(chain.scalar);
+    // An f32 robot solves in f64: its inputs and limits widened first.
+    let mut lets = match chain.scalar {
+        Scalar::F64 => vec![],
+        Scalar::F32 => vec![
+            "let pose: &[[f64; 4]; 4] = &pose.map(|row| row.map(f64::from));".to_string(),
+            format!("let free: &[f64; {n}] = &free.map(f64::from);"),
+            format!("let limits: [[f64; 2]; {n}] = Self::LIMITS.map(|l| l.map(f64::from));"),
+        ],
+    };
+    let target = match chain.scalar {
+        Scalar::F64 => "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);",
+        // The f32 rotation is orthonormal to f32 rounding only: solve for the nearest rotation.
+        Scalar::F32 => "let target = ::kinegen::ik::solutions::orthonormalized(&::kinegen::ik::geometry::Pose::from_matrix(pose));",
+    };
+    lets.extend([
+        target.to_string(),
         "if !target.is_finite() || free.iter().any(|x| !x.is_finite()) { return ::kinegen::ik::IkSolutions::empty(); }".into(),
         "let g = self.ik_geometry();".into(),
-    ];
+    ]);
     let call = |g: &str, free: &str| match family {
         Family::Planar {
             revolute,
@@ -165,7 +227,7 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
         None => {
             lets.push(format!("let candidates = {};", call("g", "free")));
             (
-                format!("pose: &[[f64; 4]; 4], free: &[f64; {n}]"),
+                format!("pose: &[[{f}; 4]; 4], free: &[{f}; {n}]"),
                 "Every solution of `pose`, with `free` giving the joints a singular pose leaves \
                  undetermined (see [`Self::ik`], [`Self::ik_near`])."
                     .to_string(),
@@ -175,6 +237,9 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             lets.push(
                 "if !q_locked.is_finite() { return ::kinegen::ik::IkSolutions::empty(); }".into(),
             );
+            if chain.scalar == Scalar::F32 {
+                lets.push("let q_locked = f64::from(q_locked);".into());
+            }
             lets.push(format!(
                 "let g6: ::kinegen::ik::geometry::Geometry<{}> = g.lock({k}, q_locked);",
                 n - 1
@@ -190,7 +255,7 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
                 model.plan.max_solutions
             ));
             (
-                format!("pose: &[[f64; 4]; 4], q_locked: f64, free: &[f64; {n}]"),
+                format!("pose: &[[{f}; 4]; 4], q_locked: {f}, free: &[{f}; {n}]"),
                 format!(
                     "Every solution of `pose` with joint {} at `q_locked`, `free` giving the joints a \
                      singular pose leaves undetermined.",
@@ -199,15 +264,19 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             )
         }
     };
+    let result = match chain.scalar {
+        Scalar::F64 => "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &Self::LIMITS, self)",
+        Scalar::F32 => "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &limits, self).to_f32()",
+    };
     Method {
         doc,
         name: "ik_seeded",
-                rates: false,
+        rates: false,
         ret: ty.into(),
         body: MethodBody::Custom {
             args,
             lets,
-            result: "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &Self::LIMITS, self)".into(),
+            result: result.into(),
         },
     }
 }
@@ -215,7 +284,8 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
 /// `ik_geometry`: the axes, points and tool at `q = 0`, from the parameters.
 fn geometry(chain: &Chain, model: &IkModel) -> Method {
     let n = chain.dof();
-    let coder = Coder::new(chain, &model.zero);
+    // f64 code for every robot (an f32 robot's parameters widened): the solver's input.
+    let coder = Coder::new(chain, &model.zero).in_f64();
     let body = coder.body(&model.ids);
     let o = &body.outputs;
     let v3 = |x: &[String]| {
@@ -236,10 +306,15 @@ fn geometry(chain: &Chain, model: &IkModel) -> Method {
         v3(&o[6 * n + 9..6 * n + 12])
     );
     Method {
-        doc: "The joint axes `h`, a point `p` on each, and the tool pose at `q = 0`, in the base \
-              frame, from this robot's parameters: the product-of-exponentials geometry the \
-              closed-form solver reads."
-            .into(),
+        doc: format!(
+            "The joint axes `h`, a point `p` on each, and the tool pose at `q = 0`, in the base \
+             frame, from this robot's parameters: the product-of-exponentials geometry the \
+             closed-form solver reads.{}",
+            match chain.scalar {
+                Scalar::F64 => "",
+                Scalar::F32 => " In f64, from the widened f32 parameters: the solve runs in f64.",
+            }
+        ),
         name: "ik_geometry",
         rates: false,
         ret: format!("::kinegen::ik::geometry::Geometry<{n}>"),

@@ -8,7 +8,7 @@ use proc_macro2::{Ident, TokenStream};
 use crate::chain::Chain;
 use crate::emit::docs::struct_doc;
 use crate::emit::functions::{Const, DetOf, Functions, Item, Method, MethodBody};
-use crate::emit::ik::CheckImpl;
+use crate::emit::ik::{CheckImpl, SingularCheck};
 use crate::model::robot::Scalar;
 
 /// What the generated item looks like from outside: `#[attrs] vis struct ident`.
@@ -71,7 +71,11 @@ pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenS
     }
     if let Some(check) = &functions.check {
         items.push_str(&check_impl(chain, &ident, check));
-        items.push_str(&ik_impl(chain, &ident, check));
+        // The trait is f64-typed (a `Kinematics<N>` supertrait): f32 robots have the
+        // inherent methods only.
+        if chain.scalar == Scalar::F64 {
+            items.push_str(&ik_impl(chain, &ident, check));
+        }
     }
     match syn::parse_str::<syn::File>(&items) {
         Ok(file) => quote::quote!(#file),
@@ -178,21 +182,39 @@ fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
 /// branches.
 fn check_impl(chain: &Chain, ident: &str, check: &CheckImpl) -> String {
     let n = chain.dof();
+    // An f32 robot's solve is checked in f64: on the geometry's product of exponentials.
+    let fk = match check.scalar {
+        Scalar::F64 => "self.fk(q)",
+        Scalar::F32 => "::kinegen::ik::solutions::pose_matrix(&self.ik_geometry().fk(q))",
+    };
     let residual = match &check.task_rows {
-        None => "::kinegen::ik::solutions::residual(&self.fk(q), pose)".to_string(),
+        None => format!("::kinegen::ik::solutions::residual(&{fk}, pose)"),
         Some(rows) => {
-            format!("::kinegen::ik::solutions::task_residual(&self.fk(q), pose, &{rows:?})")
+            format!("::kinegen::ik::solutions::task_residual(&{fk}, pose, &{rows:?})")
         }
     };
-    let singular = if check.factors {
-        "::kinegen::ik::solutions::vanishing(&self.singular_factors(q))"
-    } else {
-        "{ let _ = q; 0 }"
+    let singular = match &check.singular {
+        SingularCheck::Factors => {
+            "::kinegen::ik::solutions::vanishing(&self.singular_factors(q))".to_string()
+        }
+        SingularCheck::Widened(body) => format!(
+            "{}\n::kinegen::ik::solutions::vanishing(&[{}])",
+            body.lets.join("\n"),
+            body.outputs.join(", ")
+        ),
+        SingularCheck::None => "{ let _ = q; 0 }".to_string(),
+    };
+    // Straight-line code like the inherent methods', with their lints allowed.
+    let attrs = match check.singular {
+        SingularCheck::Widened(_) => {
+            "#[allow(clippy::all, clippy::pedantic, unused_parens, non_snake_case)] "
+        }
+        _ => "",
     };
     format!(
         "impl ::kinegen::ik::solutions::Check<{n}> for {ident} {{\n\
          #[inline] fn residual(&self, q: &[f64; {n}], pose: &::kinegen::ik::geometry::Pose) -> f64 {{ {residual} }}\n\
-         #[inline] fn singular(&self, q: &[f64; {n}]) -> u32 {{ {singular} }}\n}}\n"
+         {attrs}#[inline] fn singular(&self, q: &[f64; {n}]) -> u32 {{ {singular} }}\n}}\n"
     )
 }
 

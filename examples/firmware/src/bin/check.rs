@@ -5,7 +5,7 @@
 //!   `kinegen_robots::Ur5`: must agree to 1e-12 (they are expected to be bit-identical:
 //!   same generated code, same `libm`, IEEE arithmetic on both sides).
 //! - f32: the firmware's values (the M4F's FPU) against the host's f32 twin (1e-12: also
-//!   expected bit-identical) and
+//!   expected bit-identical; the f32 `ik`, solved in f64 and rounded, to 1e-6 rad) and
 //!   against the host's f64 at the same joint values, within the bounds measured on all
 //!   robots in `robots/tests/f32_error.rs`: 4 ε·reach for positions and linear Jacobian
 //!   rows, 4 ε for rotation entries and angular rows, 8 ε·0.12 m³ for the determinant
@@ -247,6 +247,21 @@ fn main() -> ExitCode {
         );
         let d = f64::from(r32.jacobian_det(&q32));
         f32_fw.check("det", case, get("f32", case, "det"), &[d], &close);
+        // The f32 IK (solved in f64, rounded): count and flags exact, joint values to 1e-6
+        // rad (a few f32 ulps: the f64 solve's libm differences, rounded, could flip one).
+        let ik = r32.ik(&r32.fk(&q32));
+        let mut want = vec![ik.len() as f64];
+        for b in ik.iter() {
+            want.push(if b.exact { 1.0 } else { 0.0 });
+            want.extend(b.q.map(f64::from));
+        }
+        f32_fw.check("ik", case, get("f32", case, "ik"), &want, &|i| {
+            if i == 0 || (i - 1) % 7 == 0 {
+                0.0
+            } else {
+                1e-6
+            }
+        });
     }
     f32_fw.report("f32 firmware vs f32 host");
     failures.append(&mut f32_failures);
