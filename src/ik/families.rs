@@ -19,7 +19,6 @@ const PARALLEL: f64 = 1e-20;
 
 /// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
 /// closest points: the engine proved they meet, this only absorbs rounding).
-#[inline]
 fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
     match closest_points(&g.p[i], &g.h[i], &g.p[j], &g.h[j], PARALLEL) {
         Some((a, b)) => (a + b) * 0.5,
@@ -49,7 +48,6 @@ fn orthogonal(k: &V3) -> V3 {
 /// The spherical wrist (joints 4, 5, 6 meet in a point): `(q4, q5, q6)` with
 /// `R4 R5 R6 = r36`. SP4 for q5, SP1 for q4 and q6; at `h4 ∥ R5 h6` (q5 at its singular
 /// value) q4 is free and q6 is taken from the whole rotation.
-#[inline]
 fn wrist(h: &[V3; 3], r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) -> usize {
     let [h4, h5, h6] = h;
     let (r36_h6, r36t_h4) = (r36 * h6, r36.transpose() * h4);
@@ -73,7 +71,6 @@ fn wrist(h: &[V3; 3], r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) 
 
 /// Adds the wrist solutions for the arm joints `q123` to `out`; `r123 = R1 R2 R3` (a
 /// prismatic joint turns nothing), so the wrist's rotation is `R36 = r123ᵀ R06`.
-#[inline]
 fn with_wrist(
     g: &Geometry<6>,
     (q123, r123): ([f64; 3], M3),
@@ -93,7 +90,6 @@ fn with_wrist(
 
 /// `R06 = R0T r_toolᵀ` and the wrist centre `w` (joints 4, 5, 6 meet there) of the
 /// target, with `w` at `q = 0`.
-#[inline]
 fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
     let w0 = meet(g, 3, 4);
     let r06 = pose.r * g.r_tool.transpose();
@@ -109,7 +105,6 @@ fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
 /// 3. q3 — SP3: `‖p23 + rot(h3, q3) p34‖ = ‖rot(−h1, q1) p16 − p12‖`
 /// 4. q2 — SP1: `rot(h2, q2) (p23 + R3 p34) = rot(−h1, q1) p16 − p12`
 /// 5. q5 — SP4, q4 and q6 — SP1 on `R36 = (R1 R2 R3)ᵀ R06`.
-#[inline]
 pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Candidates<6, 8> {
     let mut out = Candidates::default();
     let (r06, w0, w) = wrist_centre(g, pose);
@@ -147,7 +142,6 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> 
 /// 2. q3 — SP3: `‖p23 + rot(h3, q3) p34‖ = ‖p16‖`
 /// 3. (q1, q2) — SP2: `rot(−h1, q1) p16 = rot(h2, q2) (p23 + R3 p34)`
 /// 4. wrist as above.
-#[inline]
 pub fn spherical_two_intersecting(
     g: &Geometry<6>,
     pose: &Pose,
@@ -180,7 +174,6 @@ pub fn spherical_two_intersecting(
 /// 1. `p16 = w − c12`; with `u = p23 + p34`, q3 from `‖u + q3 h3‖ = ‖p16‖` (a quadratic)
 /// 2. (q1, q2) — SP2: `rot(−h1, q1) p16 = rot(h2, q2) (u + q3 h3)`
 /// 3. wrist as above.
-#[inline]
 pub fn spherical_two_intersecting_prismatic(
     g: &Geometry<6>,
     pose: &Pose,
@@ -231,7 +224,6 @@ pub fn spherical_two_intersecting_prismatic(
 /// At the wrist singularity (`R5 h6 ∥ h2`, so h6 ∥ h2 ∥ h3 ∥ h4) the orientation fixes
 /// only `θ ± q6`; the position then fixes q2, q3 once q4 is chosen: q4 = `free`, q3 — SP3
 /// and q2 — SP1 on the arm `p23 + R3 (p34 + R4 p45)`, q6 from the rotation.
-#[inline]
 pub fn three_parallel_two_intersecting(
     g: &Geometry<6>,
     pose: &Pose,
@@ -334,7 +326,6 @@ enum Arm {
 /// At the UR wrist singularity: the `θ` nearest to `hint` that puts the wrist centre in
 /// the middle of the elbow's reach (`‖p23⊥ + R3 p34⊥‖` ranges over `[|a − b|, a + b]`
 /// across the plane ⟂ h2; the middle, `max(a, b)`, is reachable whatever the pose).
-#[inline]
 fn mid_range_theta(h2: &V3, arm: &V3, p23: &V3, p34: &V3, p45: &V3, hint: f64) -> f64 {
     let r = flat(h2, p23).norm().max(flat(h2, p34).norm());
     let roots = sp3(&flat(h2, p45), &flat(h2, arm), h2, r, hint);

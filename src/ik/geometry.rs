@@ -102,7 +102,6 @@ pub struct Angle {
 
 impl Angle {
     /// `theta`, with its sine and cosine evaluated.
-    #[inline]
     pub fn new(theta: f64) -> Angle {
         let (sin, cos) = sin_cos(theta);
         Angle { theta, sin, cos }
@@ -128,7 +127,6 @@ impl Angle {
 
 /// The points `a + s·u` and `b + t·v` closest to each other on two lines, or `None` when
 /// the lines are parallel (to `tol` in `|u × v|²`).
-#[inline]
 pub fn closest_points(a: &V3, u: &V3, b: &V3, v: &V3, tol: f64) -> Option<(V3, V3)> {
     let n = u.cross(v);
     let nn = n.norm_squared();

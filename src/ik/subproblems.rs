@@ -149,7 +149,6 @@ fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
 /// With `cos φ = a / r`, `sin φ = a' / r`, `cos d = b / r`, `sin d = √(r² − b²) / r`, the
 /// roots `φ ± d` have `cos = (a b ∓ a' √…) / r²` and `sin = (a' b ± a √…) / r²`: one
 /// `atan2` per root and no `sin`/`cos` for the rotations built from it.
-#[inline]
 fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> Roots {
     let rr = ca * ca + sa * sa;
     if rr <= ON_AXIS * scale(mag2) {
@@ -197,13 +196,11 @@ fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> R
 /// **SP4** — `θ` with `hᵀ rot(k, θ) p = d`: where the circle of `p` about `k` crosses the
 /// plane `hᵀ x = d`. Two roots, a double root (the circle touches the plane), least
 /// squares (it misses the plane), or free (the circle lies in a plane `hᵀ x = d`).
-#[inline]
 pub fn sp4(h: &V3, p: &V3, k: &V3, d: f64, free: f64) -> Roots {
     sp4_terms(h, p, k, d, d.abs(), free)
 }
 
 /// SP4 where `d` was computed from terms of size `terms` (its rounding error).
-#[inline]
 fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
     // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
     let pp = off_axis(k, p);
@@ -218,7 +215,6 @@ fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
 /// the sphere of radius `d` about `p2`. Two roots, a double root, least squares (the
 /// nearest distance to `d`), or free (the circle is a point, or centred on the sphere's
 /// axis).
-#[inline]
 pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
     // ‖rot p1 − p2‖² = ‖p1‖² + ‖p2‖² − 2 p2ᵀ rot(k, θ) p1 = d²  ⇔  p2ᵀ rot p1 = (…)/2
     let (n1, n2) = (p1.norm_squared(), p2.norm_squared());
@@ -230,7 +226,6 @@ pub fn sp3(p1: &V3, p2: &V3, k: &V3, d: f64, free: f64) -> Roots {
 /// about `k1` and of `p2` about `k2` meet (`k1 ∦ k2`). Up to two pairs; a double root when
 /// the circles touch; least squares when they miss (or `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free
 /// (the caller's value) when its vector lies on its axis.
-#[inline]
 pub fn sp2(
     p1: &V3,
     p2: &V3,
