@@ -16,11 +16,11 @@
 //! Text is drawn with DejaVu Sans read at run time (Debian/Ubuntu package
 //! `fonts-dejavu-core`); set `KINEGEN_FONT=/path/to/font.ttf` to use another TrueType font.
 
-#[path = "common/font.rs"]
-mod font;
+#[path = "common/plots.rs"]
+mod plots;
 
 use std::error::Error;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use kinegen::Kinematics;
 use kinegen_robots::{Puma560, Ur5};
@@ -29,12 +29,8 @@ use plotters::prelude::*;
 type P3 = [f64; 3];
 
 fn main() -> Result<(), Box<dyn Error>> {
-    font::load_font()?;
-    let out: PathBuf = std::env::args_os()
-        .nth(1)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img"));
-    std::fs::create_dir_all(&out)?;
+    plots::load_font()?;
+    let out = plots::output_dir()?;
     let ur5 = Ur5::default();
     let q = [0.4, -1.1, 1.3, -0.8, 1.2, 0.3];
     let n = draw(

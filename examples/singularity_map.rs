@@ -16,12 +16,12 @@
 //! Text is drawn with DejaVu Sans read at run time (Debian/Ubuntu package
 //! `fonts-dejavu-core`); set `KINEGEN_FONT=/path/to/font.ttf` to use another TrueType font.
 
-#[path = "common/font.rs"]
-mod font;
+#[path = "common/plots.rs"]
+mod plots;
 
 use std::error::Error;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use kinegen_robots::{PlanarRr, Ur5};
 use plotters::coord::Shift;
@@ -33,12 +33,8 @@ const CELLS: usize = 320;
 const DECADES: f64 = 4.0;
 
 fn main() -> Result<(), Box<dyn Error>> {
-    font::load_font()?;
-    let out: PathBuf = std::env::args_os()
-        .nth(1)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img"));
-    std::fs::create_dir_all(&out)?;
+    plots::load_font()?;
+    let out = plots::output_dir()?;
     ur5_map(&out.join("singularity_ur5.png"))?;
     planar_rr_map(&out.join("singularity_planar_rr.png"))?;
     println!("wrote 2 maps to {}", out.display());

@@ -8,11 +8,11 @@
 //! Text is drawn with DejaVu Sans read at run time (Debian/Ubuntu package
 //! `fonts-dejavu-core`); set `KINEGEN_FONT=/path/to/font.ttf` to use another TrueType font.
 
-#[path = "common/font.rs"]
-mod font;
+#[path = "common/plots.rs"]
+mod plots;
 
 use std::error::Error;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use kinegen::trajectory::{Cubic, Profile, Quintic, StopAtVias, ThroughVias, Trapezoid};
 use plotters::prelude::*;
@@ -47,12 +47,8 @@ const ORANGE_: RGBColor = RGBColor(230, 110, 20);
 const GREY: RGBColor = RGBColor(150, 150, 150);
 
 fn main() -> Result<(), Box<dyn Error>> {
-    font::load_font()?;
-    let out: PathBuf = std::env::args_os()
-        .nth(1)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img"));
-    std::fs::create_dir_all(&out)?;
+    plots::load_font()?;
+    let out = plots::output_dir()?;
 
     let (v_max, a_max) = (0.5, 1.0);
     let limits = Some(Limits { v_max, a_max });

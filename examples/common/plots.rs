@@ -1,8 +1,8 @@
-//! Font loading shared by the plotting examples (`#[path]`-included, not an example of
-//! its own).
+//! What the plotting examples share (`#[path]`-included, not an example of its own): the
+//! font and where the pictures go.
 
 use std::error::Error;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use plotters::style::{register_font, FontStyle};
 
@@ -37,4 +37,15 @@ pub fn load_font() -> Result<(), Box<dyn Error>> {
          or set KINEGEN_FONT=/path/to/font.ttf"
             .into(),
     )
+}
+
+/// The directory the pictures are written to: the first command-line argument, else the
+/// repository's `docs/img`; created if missing.
+pub fn output_dir() -> Result<PathBuf, Box<dyn Error>> {
+    let out: PathBuf = std::env::args_os()
+        .nth(1)
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img"));
+    std::fs::create_dir_all(&out)?;
+    Ok(out)
 }
