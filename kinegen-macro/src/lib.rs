@@ -27,12 +27,12 @@ use proc_macro::TokenStream;
 /// no other way for a macro to warn:
 ///
 /// ```text
-/// warning: use of deprecated constant `_::kinegen_note`: kinegen: `Noted`: 8 expressions
-///          exceeded the normal-form budget of 3 terms: they are shared structurally only
-///          (outputs without a normal form: `jacobian_ee[0][0]`, …)
+/// warning: use of deprecated constant `_::kinegen_note`: kinegen: `Noted`: 2 expressions
+///          exceeded the normal-form budget of 2 terms: they are shared structurally only
+///          (outputs without a normal form: `fk[0][3]`, …)
 ///   --> src/lib.rs:12:5
 ///    |
-/// 12 |     budget: { nodes: 3 },
+/// 12 |     budget: { nodes: 2 },
 ///    |     ^^^^^^
 /// ```
 ///
@@ -49,7 +49,7 @@ use proc_macro::TokenStream;
 ///     pub struct Quiet;
 ///     convention: standard,
 ///     joints: [revolute { a: 1, alpha: 0, d: 0 }, revolute { a: 1, alpha: 0, d: 0 }],
-///     budget: { nodes: 3 },
+///     budget: { nodes: 2 },
 /// }
 /// ```
 #[proc_macro]

@@ -13,7 +13,7 @@ kinegen::kinematics! {
         revolute { a: L1, alpha: 0, d: 0 },
         revolute { a: L2, alpha: 0, d: 0 },
     ],
-    budget: { nodes: 3 },
+    budget: { nodes: 2 },
 }
 
 kinegen::kinematics! {
@@ -37,7 +37,7 @@ kinegen::kinematics! {
         revolute { a: L1, alpha: 0, d: 0 },
         revolute { a: L2, alpha: 0, d: 0 },
     ],
-    budget: { nodes: 3 },
+    budget: { nodes: 2 },
 }
 
 fn main() {}

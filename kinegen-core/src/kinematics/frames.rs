@@ -39,6 +39,28 @@ pub struct SymbolicChain {
     /// For each joint: its axis (unit vector it turns about or slides along) and a
     /// point on it, in world coordinates.
     pub axes: Vec<([Id; 3], [Id; 3])>,
+    /// The same axes and points in tool coordinates, from the chain unrolled backwards
+    /// from the tool (`tool⁻¹ · A_N⁻¹ ⋯ A_i⁻¹`): joint i's entries depend on joints
+    /// i..N only, which keeps the tool-frame Jacobian's exact forms small (rotating the
+    /// world columns by `Rᵀ` multiplies two full-chain polynomials only for most of the
+    /// product to cancel).
+    pub tool_axes: Vec<([Id; 3], [Id; 3])>,
+    /// Each link's steps as unrolled, and the tool's: what [`SymbolicChain::in_frame`]
+    /// replays from a link frame.
+    links: Vec<LinkSteps>,
+    tool_steps: Vec<Step>,
+}
+
+/// The chain seen from one link frame: every joint's axis and a point on it, every link
+/// frame's origin and the tool point, in that frame's coordinates.
+#[derive(Clone, Debug)]
+pub struct FrameView {
+    /// Per joint: its axis and a point on it.
+    pub axes: Vec<([Id; 3], [Id; 3])>,
+    /// Per link frame (`frames[j]`): its origin.
+    pub origins: Vec<[Id; 3]>,
+    /// The tool point.
+    pub tool: [Id; 3],
 }
 
 /// The chain from a middle frame `k`: `T_k⁻¹ · T_i` for the frames after it.
@@ -82,6 +104,89 @@ impl Joints {
 enum Step {
     Turn { axis: usize, s: Id, c: Id },
     Move { axis: usize, d: Id },
+}
+
+impl Step {
+    /// The inverse transform: the same axis, the opposite angle or length.
+    fn inverse(self, g: &mut Graph) -> Step {
+        match self {
+            Step::Turn { axis, s, c } => Step::Turn {
+                axis,
+                s: g.neg(s),
+                c,
+            },
+            Step::Move { axis, d } => Step::Move { axis, d: g.neg(d) },
+        }
+    }
+}
+
+/// One link's steps as [`unroll`] applied them, kept to replay the chain from another
+/// frame ([`SymbolicChain::tool_axes`], [`SymbolicChain::in_frame`]).
+#[derive(Clone, Debug)]
+struct LinkSteps {
+    before: Vec<Step>,
+    motion: Step,
+    after: Vec<Step>,
+    /// The joint's axis (0, 1, 2 for x, y, z), whether it is read at the link frame
+    /// (else just before the motion), and whether the joint runs against it.
+    axis: usize,
+    at_link_frame: bool,
+    flip: bool,
+}
+
+/// `t` through one link's steps: the new frame, and the joint's axis and a point on it.
+fn replay(g: &mut Graph, t: Transform, l: &LinkSteps) -> (Transform, ([Id; 3], [Id; 3])) {
+    let mut t = apply_all(g, t, &l.before);
+    let mut axis = (t.cols[l.axis], t.p);
+    t = apply(g, t, l.motion);
+    t = apply_all(g, t, &l.after);
+    if l.at_link_frame {
+        axis = (t.cols[l.axis], t.p);
+    }
+    if l.flip {
+        // The joint runs against its axis: its velocity is along −axis.
+        axis.0 = axis.0.map(|x| g.neg(x));
+    }
+    (t, axis)
+}
+
+/// `u` right-multiplied by the inverses of `steps`, last first: one step back along the
+/// chain per step.
+fn back(g: &mut Graph, u: Transform, steps: &[Step]) -> Transform {
+    steps.iter().rev().fold(u, |u, s| {
+        let inv = s.inverse(g);
+        apply(g, u, inv)
+    })
+}
+
+/// Links `links` walked backwards from the frame at their end (`u`, in the coordinates
+/// wanted): each joint's axis and a point on it, and the frame before each link.
+///
+/// At a joint's motion `u` maps the joint's frame into the wanted coordinates; the
+/// motion turns about (or slides along) its own axis, so the axis reads the same on
+/// either side of it, and for a revolute joint so does the point.
+#[allow(clippy::type_complexity)]
+fn walk_back(
+    g: &mut Graph,
+    mut u: Transform,
+    links: &[LinkSteps],
+) -> (Vec<([Id; 3], [Id; 3])>, Vec<Transform>) {
+    let mut axes = Vec::with_capacity(links.len());
+    let mut before = Vec::with_capacity(links.len());
+    for l in links.iter().rev() {
+        u = back(g, u, &l.after);
+        let mut z = u.cols[l.axis];
+        if l.flip {
+            z = z.map(|x| g.neg(x));
+        }
+        axes.push((z, u.p));
+        u = back(g, u, std::slice::from_ref(&l.motion));
+        u = back(g, u, &l.before);
+        before.push(u);
+    }
+    axes.reverse();
+    before.reverse();
+    (axes, before)
 }
 
 impl SymbolicChain {
@@ -132,13 +237,15 @@ impl SymbolicChain {
         // In pivot mode, `t` is local to frame k after the pivot and `world` maps it out.
         let mut world: Option<Transform> = None;
         let mut local_axes = Vec::new();
+        let mut link_steps = Vec::new();
         for (i, link) in chain.links.iter().enumerate() {
             if pivot_at == Some(i) {
                 world = Some(t);
                 t = Transform::identity(&mut b.graph);
             }
-            let axis;
-            (t, axis) = unroll(&mut b, t, i, link, joints.variable(i));
+            let (axis, steps);
+            (t, axis, steps) = unroll(&mut b, t, i, link, joints.variable(i));
+            link_steps.push(steps);
             match &world {
                 Some(w) => {
                     local_axes.push(axis);
@@ -155,6 +262,11 @@ impl SymbolicChain {
         }
         let steps = fixed(&mut b, &chain.tool);
         t = apply_all(&mut b.graph, t, &steps);
+        // The tool frame's view: the chain unrolled backwards from the tool.
+        let g = &mut b.graph;
+        let from_tool = Transform::identity(g);
+        let from_tool = back(g, from_tool, &steps);
+        let (tool_axes, _) = walk_back(g, from_tool, &link_steps);
         let (tool, pivot) = match (world, pivot_at) {
             (Some(w), Some(k)) => (
                 compose(&mut b.graph, &w, &t),
@@ -177,12 +289,43 @@ impl SymbolicChain {
             base,
             tool,
             axes,
+            tool_axes,
+            links: link_steps,
+            tool_steps: steps,
         };
         (sym, pivot)
     }
 }
 
 impl SymbolicChain {
+    /// The chain seen from link frame `k` (`frames[k]`, 0-based): the links after it
+    /// replayed forwards from the identity, those up to it walked backwards. Every entry
+    /// then depends only on the joints between the frame and the point or axis — small
+    /// exact forms, where rotating world values by `R_kᵀ` would multiply two
+    /// whole-chain polynomials for most of the product to cancel.
+    pub fn in_frame(&mut self, k: usize) -> FrameView {
+        let g = &mut self.graph;
+        let n = self.links.len();
+        let id = Transform::identity(g);
+        let (mut axes, before) = walk_back(g, id, &self.links[..=k]);
+        // `before[j]` is frame j − 1 (the base for j = 0); frame k is the identity.
+        let mut origins: Vec<[Id; 3]> = before[1..].iter().map(|t| t.p).collect();
+        origins.push(id.p);
+        let mut t = id;
+        for l in &self.links[k + 1..n] {
+            let axis;
+            (t, axis) = replay(g, t, l);
+            axes.push(axis);
+            origins.push(t.p);
+        }
+        let tool = apply_all(g, t, &self.tool_steps).p;
+        FrameView {
+            axes,
+            origins,
+            tool,
+        }
+    }
+
     /// The joint rates `q̇_1 … q̇_N` as leaves (`qd1`, …), made on first use.
     pub fn rates(&mut self, n: usize) -> Vec<Id> {
         (0..n)
@@ -252,7 +395,8 @@ impl SymbolicChain {
     }
 }
 
-/// One link onto frame `t`: the new frame, and the joint's axis and a point on it.
+/// One link onto frame `t`: the new frame, the joint's axis and a point on it, and the
+/// steps applied.
 ///
 /// The link's entries become nodes first, outward from the joint (its motion, the
 /// transforms after it, then those before it, nearest first: θ, d, a, α for a DH row in
@@ -263,7 +407,7 @@ fn unroll(
     i: usize,
     link: &Link,
     variable: bool,
-) -> (Transform, ([Id; 3], [Id; 3])) {
+) -> (Transform, ([Id; 3], [Id; 3]), LinkSteps) {
     let motion = if variable {
         motion(b, i, &link.motion)
     } else {
@@ -277,20 +421,16 @@ fn unroll(
     let after = fixed(b, &link.after);
     let mut before: Vec<Step> = link.before.iter().rev().map(|e| step(b, e)).collect();
     before.reverse();
-    let mut t = apply_all(&mut b.graph, t, &before);
-    let a = link.motion.axis.index();
-    let mut axis = (t.cols[a], t.p);
-    t = apply(&mut b.graph, t, motion);
-    t = apply_all(&mut b.graph, t, &after);
-    if link.axis_at == AxisAt::LinkFrame {
-        axis = (t.cols[a], t.p);
-    }
-    if link.motion.sign < 0 {
-        // The joint runs against its axis: its velocity is along −axis.
-        let g = &mut b.graph;
-        axis.0 = axis.0.map(|x| g.neg(x));
-    }
-    (t, axis)
+    let steps = LinkSteps {
+        before,
+        motion,
+        after,
+        axis: link.motion.axis.index(),
+        at_link_frame: link.axis_at == AxisAt::LinkFrame,
+        flip: link.motion.sign < 0,
+    };
+    let (t, axis) = replay(&mut b.graph, t, &steps);
+    (t, axis, steps)
 }
 
 /// The joint's motion as a step: `sin_cos(±q + offset)`, or `±q + offset` along the axis.

@@ -2,7 +2,7 @@
 //! revolute joints and `[z; 0]` for prismatic ones, with `z`, `o` the joint's axis
 //! and a point on it and `p` the tool point, all in world coordinates.
 
-use crate::algebra::graph::{Graph, Id};
+use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::kinematics::frames::{Pivot, SymbolicChain};
 use crate::kinematics::transform::{cross, rotate, rotate_back, Transform};
@@ -152,20 +152,25 @@ pub fn geometric(
     (rows, local_columns)
 }
 
-/// `diag(Rᵀ, Rᵀ) · J`: the same Jacobian expressed in the frame `t` (the tool frame).
-pub fn rotate_into(g: &mut Graph, t: &Transform, j: &Rows) -> Rows {
-    let n = j[0].len();
-    let mut out = vec![vec![0; n]; 6];
-    for col in 0..n {
-        for block in [0, 3] {
-            for (r, row) in out.iter_mut().skip(block).take(3).enumerate() {
-                // (Rᵀ v)_r = column r of R · v
-                let terms: Vec<Id> = (0..3)
-                    .map(|k| g.mul(t.cols[r][k], j[block + k][col]))
-                    .collect();
-                row[col] = g.sum(&terms);
-            }
-        }
-    }
-    out
+/// The geometric Jacobian in the tool frame (`diag(Rᵀ, Rᵀ) · J`), from the joint axes in
+/// tool coordinates (`sym.tool_axes`): the tool point is the origin there, so a
+/// revolute column is `[o × z; z]` and a prismatic one `[z; 0]`.
+pub fn tool_frame(chain: &Chain, sym: &mut SymbolicChain) -> Rows {
+    let g = &mut sym.graph;
+    let zero = g.int(0);
+    let cols: Vec<Column> = chain
+        .kinds()
+        .zip(&sym.tool_axes)
+        .map(|(kind, &(z, o))| match kind {
+            JointKind::Revolute => Column {
+                lin: cross(g, o, z),
+                ang: z,
+            },
+            JointKind::Prismatic => Column {
+                lin: z,
+                ang: [zero; 3],
+            },
+        })
+        .collect();
+    from_columns(&cols)
 }

@@ -55,8 +55,7 @@ impl Model {
         let fk_rows = sym.tool.rows();
         let frame_rows = sym.frames.iter().map(Transform::rows).collect();
         let (jacobian, local) = jacobian::geometric(chain, &mut sym, pivot.as_ref());
-        let tool = sym.tool;
-        let jacobian_ee = jacobian::rotate_into(&mut sym.graph, &tool, &jacobian);
+        let jacobian_ee = jacobian::tool_frame(chain, &mut sym);
         let task = chain
             .task
             .as_ref()

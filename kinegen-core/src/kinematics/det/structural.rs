@@ -16,7 +16,7 @@ use num_traits::{One, Signed, Zero};
 use crate::algebra::graph::{Graph, Id};
 use crate::algebra::poly::{Poly, Ring, TooLarge};
 use crate::chain::Chain;
-use crate::kinematics::frames::SymbolicChain;
+use crate::kinematics::frames::{FrameView, SymbolicChain};
 use crate::kinematics::transform::cross;
 use crate::model::options::Deadline;
 use crate::model::robot::JointKind;
@@ -149,7 +149,9 @@ pub fn determinant(
     if sym.graph.past_deadline() {
         return Err(DetError::Deadline);
     }
-    let candidates = sparsest(chain, sym, rows)?;
+    // Only the matrices' normal forms are kept: build them in a scratch copy, so that
+    // their nodes do not stand in for (and reshape) the outputs built after.
+    let candidates = sparsest(chain, &mut sym.clone(), rows)?;
     let mut best: Option<(Factored, (usize, usize))> = None;
     let mut reference: Option<Poly> = None;
     // A determinant worth a closed form is small; past this many terms in any
@@ -193,6 +195,22 @@ pub fn determinant(
     }
 }
 
+/// The frame a determinant's Jacobian is expressed in.
+#[derive(Clone, Copy, Debug)]
+enum Frame {
+    World,
+    /// Link frame `frames[k]`.
+    Link(usize),
+}
+
+/// The reference point a determinant's Jacobian is taken about.
+#[derive(Clone, Copy, Debug)]
+enum Point {
+    Tool,
+    /// The origin of link frame `frames[j]`.
+    Origin(usize),
+}
+
 /// The matrices of the few sparsest frame/point choices (zeros, then terms), in order.
 fn sparsest(
     chain: &Chain,
@@ -200,56 +218,68 @@ fn sparsest(
     rows: &[usize],
 ) -> Result<Vec<Vec<Vec<Poly>>>, DetError> {
     let (points, frames) = choices(sym, rows);
+    // Entries past the determinant's budget cannot give a small closed form: cap the
+    // normal forms while building the matrices so they stop early.
+    let saved = sym.graph.max_terms;
+    sym.graph.max_terms = saved.min(MAX_DET_TERMS);
+    // Each frame's view of the chain is built there directly (see
+    // `SymbolicChain::in_frame`), not rotated from the world's.
+    let views: Vec<FrameView> = frames
+        .iter()
+        .map(|&f| match f {
+            Frame::World => FrameView {
+                axes: sym.axes.clone(),
+                origins: sym.frames.iter().map(|t| t.p).collect(),
+                tool: sym.tool.p,
+            },
+            Frame::Link(k) => sym.in_frame(k),
+        })
+        .collect();
     type Scored = ((usize, usize), Vec<Vec<Poly>>);
     let mut candidates: Vec<Scored> = Vec::new();
-    for point in &points {
-        for cols in &frames {
+    for &point in &points {
+        for view in &views {
             if sym.graph.past_deadline() {
+                sym.graph.max_terms = saved;
                 return Err(DetError::Deadline);
             }
-            // Entries past the determinant's budget cannot give a small closed form:
-            // cap the normal forms while building the matrix so they stop early.
-            let saved = sym.graph.max_terms;
-            sym.graph.max_terms = saved.min(MAX_DET_TERMS);
-            let m = matrix(chain, sym, rows, *point, cols);
-            sym.graph.max_terms = saved;
-            if let Some(m) = m {
+            let p = match point {
+                Point::Tool => view.tool,
+                Point::Origin(j) => view.origins[j],
+            };
+            if let Some(m) = matrix(chain, &mut sym.graph, rows, view, p) {
                 let nonzero = m.iter().flatten().filter(|p| !p.is_zero()).count();
                 let terms = m.iter().flatten().map(Poly::len).sum::<usize>();
                 candidates.push(((nonzero, terms), m));
             }
         }
     }
+    sym.graph.max_terms = saved;
     candidates.sort_by_key(|(score, _)| *score);
     candidates.truncate(3);
     Ok(candidates.into_iter().map(|(_, m)| m).collect())
 }
 
-/// Reference points and frames (rotation columns) the determinant may be taken in.
-#[allow(clippy::type_complexity)]
-fn choices(sym: &mut SymbolicChain, rows: &[usize]) -> (Vec<[Id; 3]>, Vec<[[Id; 3]; 3]>) {
-    let mut points: Vec<[Id; 3]> = vec![sym.tool.p];
-    let mut frames: Vec<[[Id; 3]; 3]> = vec![identity_cols(&mut sym.graph)];
+/// Reference points and frames the determinant may be taken in.
+fn choices(sym: &mut SymbolicChain, rows: &[usize]) -> (Vec<Point>, Vec<Frame>) {
+    let mut points = vec![Point::Tool];
+    let mut frames = vec![Frame::World];
+    let n = sym.frames.len();
     if rows.len() == 6 {
         // Points on the last axes (the wrist) and middle frames give the sparsest
         // matrices; the other choices only cost time.
-        let n = sym.frames.len();
-        points.extend(sym.frames[n.saturating_sub(4)..].iter().map(|t| t.p));
-        frames.extend(
-            sym.frames[..n.saturating_sub(2).max(1)]
-                .iter()
-                .map(|t| t.cols),
-        );
+        points.extend((n.saturating_sub(4)..n).map(Point::Origin));
+        frames.extend((0..n.saturating_sub(2).max(1)).map(Frame::Link));
     } else {
         // A task Jacobian is invariant only under rotations that map its rows to
         // themselves: rotations about world z when the rows are x, y (, z, rz).
         let planar = rows.iter().all(|&r| r != 3 && r != 4);
         if planar {
-            for t in &sym.frames {
-                let z = sym.graph.int(0);
-                let one = sym.graph.int(1);
+            let z = sym.graph.int(0);
+            let one = sym.graph.int(1);
+            for (k, t) in sym.frames.iter().enumerate() {
                 if t.cols[2] == [z, z, one] {
-                    frames.push(t.cols);
+                    frames.push(Frame::Link(k));
                 }
             }
         }
@@ -257,35 +287,28 @@ fn choices(sym: &mut SymbolicChain, rows: &[usize]) -> (Vec<[Id; 3]>, Vec<[[Id; 
     (points, frames)
 }
 
-fn identity_cols(g: &mut Graph) -> [[Id; 3]; 3] {
-    let (o, l) = (g.int(0), g.int(1));
-    [[l, o, o], [o, l, o], [o, o, l]]
-}
-
-/// Rows `rows` of J about `point`, expressed in the frame with rotation columns `cols`.
+/// Rows `rows` of J about `point`, all in the coordinates of `view`.
 fn matrix(
     chain: &Chain,
-    sym: &mut SymbolicChain,
+    g: &mut Graph,
     rows: &[usize],
+    view: &FrameView,
     point: [Id; 3],
-    cols: &[[Id; 3]; 3],
 ) -> Option<Vec<Vec<Poly>>> {
     let n = chain.dof();
-    let g = &mut sym.graph;
     // Inputs past the determinant's budget: no closed form from this choice, and
     // multiplying their normal forms out would only cost time.
     let small = |g: &Graph, ids: &[Id]| {
         ids.iter()
             .all(|&id| g.nf(id).is_some_and(|p| p.len() <= MAX_DET_INPUT_TERMS))
     };
-    let flat: Vec<Id> = cols.iter().flatten().copied().chain(point).collect();
-    if !small(g, &flat) || !sym.axes.iter().all(|(z, o)| small(g, z) && small(g, o)) {
+    if !small(g, &point) || !view.axes.iter().all(|(z, o)| small(g, z) && small(g, o)) {
         return None;
     }
     let zero = g.int(0);
     let mut m = vec![vec![Poly::zero(); n]; rows.len()];
     for (i, kind) in chain.kinds().enumerate() {
-        let (z, o) = sym.axes[i];
+        let (z, o) = view.axes[i];
         let (lin, ang) = match kind {
             JointKind::Revolute => {
                 let r = [
@@ -297,14 +320,7 @@ fn matrix(
             }
             JointKind::Prismatic => (z, [zero; 3]),
         };
-        let mut col = [0; 6];
-        for (block, v) in [(0, lin), (3, ang)] {
-            for (k, c) in cols.iter().enumerate() {
-                // (Rᵀ v)_k = column k of R · v
-                let terms: Vec<Id> = (0..3).map(|t| g.mul(c[t], v[t])).collect();
-                col[block + k] = g.sum(&terms);
-            }
-        }
+        let col = [lin[0], lin[1], lin[2], ang[0], ang[1], ang[2]];
         for (r, &row) in rows.iter().enumerate() {
             m[r][i] = g.nf(col[row])?.clone();
         }
