@@ -1,5 +1,6 @@
 //! The generated code is a function of the table alone (issue 8): `generate` run twice
-//! on every robot of `robots/` gives byte-identical pretty-printed code and notes.
+//! on every robot of `robots/` gives byte-identical pretty-printed code and notes, and
+//! the item parses as Rust.
 //!
 //! Each `HashMap` in the engine gets its own random hash seed (per process and per map),
 //! so two runs in one process already differ in every hash-map iteration order; the
@@ -16,6 +17,10 @@ use kinegen_core::{front::toml_file, generate, ItemHeader};
 fn run(path: &Path) -> (String, Vec<String>) {
     let (robot, options) = toml_file::load_file(path).unwrap_or_else(|e| panic!("{e}"));
     let g = generate(&robot.chain(), &ItemHeader::public(&robot.name), &options);
+    // The engine only lexes the item it prints; here it must parse as Rust.
+    if let Err(e) = syn::parse2::<syn::File>(g.tokens.clone()) {
+        panic!("{}: generated code does not parse: {e}", path.display());
+    }
     (g.pretty(), g.notes)
 }
 

@@ -77,12 +77,16 @@ pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenS
             items.push_str(&ik_impl(chain, &ident, check));
         }
     }
-    match syn::parse_str::<syn::File>(&items) {
-        Ok(file) => quote::quote!(#file),
+    // Lexed only: inside the macro this is the compiler's own lexer, while parsing the
+    // whole item with `syn` (at the opt-level 0 users build proc-macros with) cost a
+    // fifth of the Panda's expansion. rustc parses the tokens anyway; the engine's tests
+    // parse every robot's item with `syn` (kinegen-core/tests/determinism.rs).
+    match items.parse::<TokenStream>() {
+        Ok(tokens) => tokens,
         Err(e) => {
             // An engine bug, never the user's input: report it instead of emitting
-            // code that does not parse.
-            let msg = format!("kinegen internal error: generated code does not parse: {e}");
+            // code that does not lex.
+            let msg = format!("kinegen internal error: generated code does not lex: {e}");
             quote::quote!(::core::compile_error!(#msg);)
         }
     }
