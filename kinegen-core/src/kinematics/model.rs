@@ -51,11 +51,23 @@ impl Model {
         pivot: Option<usize>,
         deadline: Deadline,
     ) -> Model {
+        Model::candidate(chain, max_terms, pivot, deadline).with_tool_frame(chain)
+    }
+
+    /// [`Model::symbolic`] without the tool-frame Jacobian (`jacobian_ee` empty): what
+    /// the evaluation orders are compared on. The nodes made so far are those of the full
+    /// build, in the same order.
+    pub fn candidate(
+        chain: &Chain,
+        max_terms: usize,
+        pivot: Option<usize>,
+        deadline: Deadline,
+    ) -> Model {
         let (mut sym, pivot) = SymbolicChain::build(chain, max_terms, pivot, deadline);
         let fk_rows = sym.tool.rows();
         let frame_rows = sym.frames.iter().map(Transform::rows).collect();
         let (jacobian, local) = jacobian::geometric(chain, &mut sym, pivot.as_ref());
-        let jacobian_ee = jacobian::tool_frame(chain, &mut sym);
+        let jacobian_ee = Vec::new();
         let task = chain
             .task
             .as_ref()
@@ -75,6 +87,12 @@ impl Model {
         };
         model.fused = model.fused_ids();
         model
+    }
+
+    /// A [`Model::candidate`] completed with the tool-frame Jacobian.
+    pub fn with_tool_frame(mut self, chain: &Chain) -> Model {
+        self.jacobian_ee = jacobian::tool_frame(chain, &mut self.sym);
+        self
     }
 
     /// The tool pose's ids then the Jacobian's, as `fk_and_jacobian` returns them.

@@ -42,7 +42,7 @@ pub fn cheapest(chain: &Chain, options: &Options, deadline: Deadline) -> Model {
             ));
             break;
         }
-        let model = Model::symbolic(chain, options.budget.max_terms(), pivot, deadline);
+        let model = Model::candidate(chain, options.budget.max_terms(), pivot, deadline);
         let overflowed = model.sym.graph.nf_overflows > 0;
         built.push((cost(chain, &model), tried, model));
         if overflowed {
@@ -66,7 +66,7 @@ pub fn cheapest(chain: &Chain, options: &Options, deadline: Deadline) -> Model {
             ));
             break;
         }
-        let model = simplify(model, options);
+        let model = simplify(model.with_tool_frame(chain), options);
         let c = cost(chain, &model);
         if best.as_ref().is_none_or(|(b, t, _)| (c, tried) < (*b, *t)) {
             best = Some((c, tried, model));
@@ -89,8 +89,13 @@ pub fn variant(
     pivot: Option<usize>,
     deadline: Deadline,
 ) -> Model {
+    let t0 = std::time::Instant::now();
     let model = Model::symbolic(chain, options.budget.max_terms(), pivot, deadline);
-    simplify(model, options)
+    eprintln!("TIME   symbolic {:?} {:?}", pivot, t0.elapsed());
+    let t0 = std::time::Instant::now();
+    let m = simplify(model, options);
+    eprintln!("TIME   simplify {:?} {:?}", pivot, t0.elapsed());
+    m
 }
 
 /// Operations of `fk` plus `jacobian` after sharing.
