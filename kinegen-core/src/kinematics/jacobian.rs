@@ -2,10 +2,10 @@
 //! revolute joints and `[z; 0]` for prismatic ones, with `z`, `o` the joint's axis
 //! and a point on it and `p` the tool point, all in world coordinates.
 
-use crate::algebra::graph::Id;
+use crate::algebra::graph::{Graph, Id};
 use crate::chain::Chain;
 use crate::kinematics::frames::{Pivot, SymbolicChain};
-use crate::kinematics::transform::{cross, rotate, rotate_back, Transform};
+use crate::kinematics::transform::{cross, rotate, Transform};
 use crate::model::robot::JointKind;
 
 /// A 6×N matrix of nodes, row-major (`rows[r][joint]`), rows `[vx vy vz ωx ωy ωz]`.
@@ -61,46 +61,73 @@ pub struct LocalColumns {
 
 impl LocalColumns {
     /// Every column of the Jacobian in frame `k`: those of joints `k..N` as built, those
-    /// of the joints before `k` from their axes (`sym.axes`, world) expressed in frame
-    /// `k` — `z' = R_kᵀ z`, `o' = R_kᵀ (o − p_k)`, `[z' × (p' − o'); z']` with `p'` the
-    /// tool point in frame `k` — so that none of them is a rotated world column.
+    /// of the joints before `k` from their axes seen from frame `k` directly
+    /// ([`SymbolicChain::in_frame`]: the links before it walked backwards), `[z × (p − o);
+    /// z]` with `p` the tool point in frame `k` — so that none of them is a rotated world
+    /// column, and none of their exact forms a product of two whole-chain polynomials.
     pub fn all(&self, chain: &Chain, sym: &mut SymbolicChain) -> Vec<Column> {
-        let frame = self.frame;
+        // Frame k is link frame k − 1 (0-based): `base · A1 ⋯ Ak`.
+        let view = sym.in_frame(self.k - 1);
         let g = &mut sym.graph;
         let zero = g.int(0);
+        let tool = self.tool;
         let mut cols: Vec<Column> = chain
             .kinds()
-            .zip(&sym.axes)
+            .zip(&view.axes)
             .take(self.k)
             .map(|(kind, &(z, o))| {
-                let z = rotate_back(g, &frame, z);
-                match kind {
-                    JointKind::Revolute => {
-                        let d = [
-                            g.sub(o[0], frame.p[0]),
-                            g.sub(o[1], frame.p[1]),
-                            g.sub(o[2], frame.p[2]),
-                        ];
-                        let o = rotate_back(g, &frame, d);
-                        let r = [
-                            g.sub(self.tool[0], o[0]),
-                            g.sub(self.tool[1], o[1]),
-                            g.sub(self.tool[2], o[2]),
-                        ];
-                        Column {
-                            lin: cross(g, z, r),
-                            ang: z,
-                        }
-                    }
-                    JointKind::Prismatic => Column {
-                        lin: z,
-                        ang: [zero; 3],
-                    },
-                }
+                column(g, kind, z, zero, |g| {
+                    let r = [
+                        g.sub(tool[0], o[0]),
+                        g.sub(tool[1], o[1]),
+                        g.sub(tool[2], o[2]),
+                    ];
+                    cross(g, z, r)
+                })
             })
             .collect();
         cols.extend_from_slice(&self.columns);
         cols
+    }
+}
+
+/// Every column of the Jacobian in link frame `frames[k]` (0-based), from the chain
+/// seen from there ([`SymbolicChain::in_frame`]): `[z × (p − o); z]`.
+pub fn in_frame_columns(chain: &Chain, sym: &mut SymbolicChain, k: usize) -> Vec<Column> {
+    let view = sym.in_frame(k);
+    let g = &mut sym.graph;
+    let zero = g.int(0);
+    let p = view.tool;
+    chain
+        .kinds()
+        .zip(&view.axes)
+        .map(|(kind, &(z, o))| {
+            column(g, kind, z, zero, |g| {
+                let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
+                cross(g, z, r)
+            })
+        })
+        .collect()
+}
+
+/// A joint's column from its axis `z`: `[lin; z]` for a revolute joint (`lin` made only
+/// then), `[z; 0]` for a prismatic one.
+fn column(
+    g: &mut Graph,
+    kind: JointKind,
+    z: [Id; 3],
+    zero: Id,
+    lin: impl FnOnce(&mut Graph) -> [Id; 3],
+) -> Column {
+    match kind {
+        JointKind::Revolute => Column {
+            lin: lin(g),
+            ang: z,
+        },
+        JointKind::Prismatic => Column {
+            lin: z,
+            ang: [zero; 3],
+        },
     }
 }
 
@@ -130,13 +157,10 @@ pub fn geometric(
             None => (sym.axes[i].0, sym.axes[i].1, sym.tool.p),
         };
         let g = &mut sym.graph;
-        let (mut lin, mut ang) = match kind {
-            JointKind::Revolute => {
-                let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
-                (cross(g, z, r), z)
-            }
-            JointKind::Prismatic => (z, [zero; 3]),
-        };
+        let Column { mut lin, mut ang } = column(g, kind, z, zero, |g| {
+            let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
+            cross(g, z, r)
+        });
         if let Some(pv) = local {
             if let Some(lc) = local_columns.as_mut() {
                 lc.columns.push(Column { lin, ang });
@@ -161,16 +185,7 @@ pub fn tool_frame(chain: &Chain, sym: &mut SymbolicChain) -> Rows {
     let cols: Vec<Column> = chain
         .kinds()
         .zip(&sym.tool_axes)
-        .map(|(kind, &(z, o))| match kind {
-            JointKind::Revolute => Column {
-                lin: cross(g, o, z),
-                ang: z,
-            },
-            JointKind::Prismatic => Column {
-                lin: z,
-                ang: [zero; 3],
-            },
-        })
+        .map(|(kind, &(z, o))| column(g, kind, z, zero, |g| cross(g, o, z)))
         .collect();
     from_columns(&cols)
 }

@@ -105,17 +105,6 @@ pub fn turn(g: &mut Graph, t: &Transform, axis: usize, s: Id, c: Id) -> Transfor
     out
 }
 
-/// `Rᵀ · v` for the rotation of `w`: `v` expressed in the frame `w`.
-pub fn rotate_back(g: &mut Graph, w: &Transform, v: [Id; 3]) -> [Id; 3] {
-    let mut out = [0; 3];
-    for (i, o) in out.iter_mut().enumerate() {
-        // (Rᵀ v)_i = column i of R · v
-        let terms: Vec<Id> = (0..3).map(|m| g.mul(w.cols[i][m], v[m])).collect();
-        *o = g.sum(&terms);
-    }
-    out
-}
-
 /// `a + b`.
 pub fn add(g: &mut Graph, a: [Id; 3], b: [Id; 3]) -> [Id; 3] {
     [g.add(a[0], b[0]), g.add(a[1], b[1]), g.add(a[2], b[2])]
