@@ -19,7 +19,7 @@ const SIMPLIFY_MARGIN: (usize, usize) = (9, 8);
 ///
 /// Candidates: no middle frame, frame 1 (a vertical first axis drops out of every
 /// product), frame N−1 (the wrist); trying all N costs N chain builds for little gain.
-/// Each is built and counted unsimplified; those within [`SIMPLIFY_MARGIN`] of the
+/// Each is built and counted unsimplified; those within 1/8 (`SIMPLIFY_MARGIN`) of the
 /// cheapest are simplified, cheapest first, and compared again. Ties go to the earlier
 /// candidate. All compute the same values. Past the deadline no further candidate is
 /// built or simplified (with a note), and past the normal-form budget they are not worth
