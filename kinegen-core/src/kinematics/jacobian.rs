@@ -66,6 +66,9 @@ impl LocalColumns {
     /// z]` with `p` the tool point in frame `k` — so that none of them is a rotated world
     /// column, and none of their exact forms a product of two whole-chain polynomials.
     pub fn all(&self, chain: &Chain, sym: &mut SymbolicChain) -> Vec<Column> {
+        if self.k == 0 {
+            return self.columns.clone();
+        }
         // Frame k is link frame k − 1 (0-based): `base · A1 ⋯ Ak`.
         let view = sym.in_frame(self.k - 1);
         let g = &mut sym.graph;

@@ -1,6 +1,7 @@
 //! The evaluation order: the same outputs built with the chain's tail in different
-//! middle frames ([`crate::kinematics::frames::Pivot`]), each simplified; the one whose
-//! `fk` and `jacobian` take the fewest operations after sharing is kept.
+//! middle frames ([`crate::kinematics::frames::Pivot`]), those that can still win
+//! simplified; the one whose `fk` and `jacobian` take the fewest operations after sharing
+//! is kept.
 
 use crate::chain::Chain;
 use crate::emit::code::Coder;
