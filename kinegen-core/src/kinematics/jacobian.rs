@@ -71,24 +71,7 @@ impl LocalColumns {
         }
         // Frame k is link frame k − 1 (0-based): `base · A1 ⋯ Ak`.
         let view = sym.in_frame(self.k - 1);
-        let g = &mut sym.graph;
-        let zero = g.int(0);
-        let tool = self.tool;
-        let mut cols: Vec<Column> = chain
-            .kinds()
-            .zip(&view.axes)
-            .take(self.k)
-            .map(|(kind, &(z, o))| {
-                column(g, kind, z, zero, |g| {
-                    let r = [
-                        g.sub(tool[0], o[0]),
-                        g.sub(tool[1], o[1]),
-                        g.sub(tool[2], o[2]),
-                    ];
-                    cross(g, z, r)
-                })
-            })
-            .collect();
+        let mut cols = columns_about(chain, &mut sym.graph, &view.axes[..self.k], self.tool);
         cols.extend_from_slice(&self.columns);
         cols
     }
@@ -98,12 +81,22 @@ impl LocalColumns {
 /// seen from there ([`SymbolicChain::in_frame`]): `[z × (p − o); z]`.
 pub fn in_frame_columns(chain: &Chain, sym: &mut SymbolicChain, k: usize) -> Vec<Column> {
     let view = sym.in_frame(k);
-    let g = &mut sym.graph;
+    columns_about(chain, &mut sym.graph, &view.axes, view.tool)
+}
+
+/// The columns `[z × (p − o); z]` (prismatic `[z; 0]`) of the joints whose axes and
+/// points are `axes` (the first joints of `chain`, as many as given), about the point
+/// `p`, all in one frame's coordinates.
+pub fn columns_about(
+    chain: &Chain,
+    g: &mut Graph,
+    axes: &[([Id; 3], [Id; 3])],
+    p: [Id; 3],
+) -> Vec<Column> {
     let zero = g.int(0);
-    let p = view.tool;
     chain
         .kinds()
-        .zip(&view.axes)
+        .zip(axes)
         .map(|(kind, &(z, o))| {
             column(g, kind, z, zero, |g| {
                 let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];

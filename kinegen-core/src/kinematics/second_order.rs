@@ -77,7 +77,7 @@ impl SecondOrder {
 /// `J̇ q̇` is a sum of cross products, so it can be formed in any frame and rotated out
 /// once: in the world frame, in the model's middle frame (where the columns after it do
 /// not depend on the joints before it), or in one of the two link frames in the middle of
-/// the chain (each half of a 7-joint arm short: the Panda's 341 operations become 287).
+/// the chain (each half of a 7-joint arm short: the Panda's 341 operations become 288).
 /// Each candidate is built in a scratch copy of the graph and counted; only the cheapest
 /// is built in the model's, so the others leave no nodes behind.
 pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {

@@ -17,9 +17,8 @@ use crate::algebra::graph::{Graph, Id};
 use crate::algebra::poly::{Poly, Ring, TooLarge};
 use crate::chain::Chain;
 use crate::kinematics::frames::{FrameView, SymbolicChain};
-use crate::kinematics::transform::cross;
+use crate::kinematics::jacobian::columns_about;
 use crate::model::options::Deadline;
-use crate::model::robot::JointKind;
 use crate::model::value::Rat;
 
 /// A determinant as `constant · Π factors`, each factor in normal form.
@@ -309,22 +308,12 @@ fn matrix(
     if !small(g, &point) || !view.axes.iter().all(|(z, o)| small(g, z) && small(g, o)) {
         return None;
     }
-    let zero = g.int(0);
     let mut m = vec![vec![Poly::zero(); n]; rows.len()];
-    for (i, kind) in chain.kinds().enumerate() {
-        let (z, o) = view.axes[i];
-        let (lin, ang) = match kind {
-            JointKind::Revolute => {
-                let r = [
-                    g.sub(point[0], o[0]),
-                    g.sub(point[1], o[1]),
-                    g.sub(point[2], o[2]),
-                ];
-                (cross(g, z, r), z)
-            }
-            JointKind::Prismatic => (z, [zero; 3]),
-        };
-        let col = [lin[0], lin[1], lin[2], ang[0], ang[1], ang[2]];
+    for (i, c) in columns_about(chain, g, &view.axes, point)
+        .iter()
+        .enumerate()
+    {
+        let col = [c.lin[0], c.lin[1], c.lin[2], c.ang[0], c.ang[1], c.ang[2]];
         for (r, &row) in rows.iter().enumerate() {
             m[r][i] = g.nf(col[row])?.clone();
         }
