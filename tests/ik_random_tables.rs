@@ -5,9 +5,19 @@
 //! IKFast's self-test against the independent numeric reference of `kinegen_core`: 20 %
 //! of the joints snapped to −π/2, 0, π/2, every exact solution's FK within 1e-10, the
 //! generating configuration found (and, at singular ones, returned for `free = q`).
+//!
+//! The family tables have orthogonal wrists (twists of a quarter turn), for which the
+//! engine decides `WristPair::HalfTurn` (the second root of q5 by half turns); each is also
+//! solved with `Solve`, the subproblems for both roots, which must give the same solutions.
+//! `general_wrist_tables` gives the PUMA-like arm wrist twists of a third of a turn (the
+//! engine must decide `Solve`), with the wrist joints not snapped: at a general wrist's
+//! fold (R5 h6 in the plane of h4 and h5, where the two roots of q5 meet) an error ε
+//! upstream moves q4–q6 by about √ε (1e-5 rad after the arm's 2e-10 at a singular
+//! arm pose), beyond this test's 1e-7 for finding the generating configuration.
 
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
 use kinegen::ik::dispatch::{solve, Checks, DynGeometry, DynPlan, DynProblem};
+use kinegen::ik::families::WristPair;
 use kinegen::ik::XorShift64;
 use kinegen_core::front::toml_file::load_str;
 use kinegen_core::kinematics::ik::family::Family;
@@ -29,6 +39,11 @@ fn len(rng: &mut XorShift64) -> f64 {
 
 fn twist(rng: &mut XorShift64) -> &'static str {
     ["pi/2", "-pi/2"][(rng.next_u64() % 2) as usize]
+}
+
+/// The twist of a general (not orthogonal) wrist joint: a third of a turn, either sign.
+fn general_twist(rng: &mut XorShift64) -> &'static str {
+    ["pi/3", "-pi/3"][(rng.next_u64() % 2) as usize]
 }
 
 /// A joint offset: zero, a quarter turn, or an angle that does not fold.
@@ -99,12 +114,17 @@ fn ur_like(rng: &mut XorShift64) -> String {
 
 /// PUMA-like: spherical wrist, h2 ∥ h3.
 fn puma_like(rng: &mut XorShift64) -> String {
+    puma_like_wrist(rng, twist)
+}
+
+/// PUMA-like with the wrist's twists from `wrist`.
+fn puma_like_wrist(rng: &mut XorShift64, wrist: fn(&mut XorShift64) -> &'static str) -> String {
     let rows: Vec<Row> = vec![
         ("revolute", len(rng), twist(rng).into(), len(rng)),
         ("revolute", len(rng), "0".into(), len(rng)),
         ("revolute", len(rng), twist(rng).into(), len(rng)),
-        ("revolute", 0.0, twist(rng).into(), len(rng)),
-        ("revolute", 0.0, twist(rng).into(), 0.0),
+        ("revolute", 0.0, wrist(rng).into(), len(rng)),
+        ("revolute", 0.0, wrist(rng).into(), 0.0),
         ("revolute", len(rng), "0".into(), len(rng)),
     ];
     table(&rows, rng, true, None)
@@ -154,6 +174,11 @@ fn plan(chain: &Chain) -> (Family, DynPlan, DynGeometry, Option<usize>) {
         revolute,
         prismatic,
         locked: ik.plan.locked,
+        wrist: if ik.plan.wrist_half_turn {
+            WristPair::HalfTurn
+        } else {
+            WristPair::Solve
+        },
     };
     let g = DynGeometry {
         h: v.h,
@@ -180,8 +205,15 @@ fn gap(a: &[f64], b: &[f64], revolute: &[bool]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The self-test on one table; `task` rows compare only those entries.
-fn self_test(robot: &Robot, expected: &str, rng: &mut XorShift64, task: Option<&[usize]>) {
+/// The self-test on one table; `task` rows compare only those entries; `snap_wrist`:
+/// joints 4–6 are snapped too. Returns the engine's wrist decision.
+fn self_test(
+    robot: &Robot,
+    expected: &str,
+    rng: &mut XorShift64,
+    task: Option<&[usize]>,
+    snap_wrist: bool,
+) -> WristPair {
     let chain = robot.chain();
     let (family, plan, geometry, _) = plan(&chain);
     assert_eq!(plan.solver, expected, "{family:?} for\n{chain}");
@@ -202,7 +234,7 @@ fn self_test(robot: &Robot, expected: &str, rng: &mut XorShift64, task: Option<&
             .map(|i| {
                 let [lo, hi] = limits[i];
                 let x = lo + (hi - lo) * rng.next_f64();
-                if revolute[i] && rng.next_f64() < 0.2 {
+                if revolute[i] && rng.next_f64() < 0.2 && (snap_wrist || !(3..6).contains(&i)) {
                     [-FRAC_PI_2, 0.0, FRAC_PI_2][(rng.next_u64() % 3) as usize]
                 } else {
                     x
@@ -247,6 +279,32 @@ fn self_test(robot: &Robot, expected: &str, rng: &mut XorShift64, task: Option<&
             limits: &limits,
         };
         let sols = solve(&problem, &checks).unwrap();
+        if plan.wrist == WristPair::HalfTurn {
+            // The half-turn shortcut and the subproblems agree, solution for solution.
+            let general = DynPlan {
+                wrist: WristPair::Solve,
+                ..plan.clone()
+            };
+            let other = solve(
+                &DynProblem {
+                    plan: &general,
+                    ..problem
+                },
+                &checks,
+            )
+            .unwrap();
+            assert_eq!(
+                sols.len(),
+                other.len(),
+                "{q:?}: {sols:?} vs {other:?}\n{chain}"
+            );
+            for (a, b) in sols.iter().zip(&other) {
+                assert!(
+                    a.exact == b.exact && gap(&a.q, &b.q, &revolute) <= 1e-9,
+                    "{q:?}: {a:?} vs {b:?}\n{chain}"
+                );
+            }
+        }
         for b in sols.iter().filter(|b| b.exact) {
             let e = error(&b.q);
             assert!(
@@ -263,6 +321,7 @@ fn self_test(robot: &Robot, expected: &str, rng: &mut XorShift64, task: Option<&
             "{expected}: q = {q:?} (singular: {singular}) not among {sols:?}\n{chain}"
         );
     }
+    plan.wrist
 }
 
 macro_rules! family_test {
@@ -273,7 +332,14 @@ macro_rules! family_test {
             for k in 0..TABLES {
                 let src = $make(&mut rng);
                 let (robot, _) = load_str(&src, &format!("table{k}.toml")).unwrap();
-                self_test(&robot, $solver, &mut rng, $task);
+                let wrist = self_test(&robot, $solver, &mut rng, $task, true);
+                // Every family table's wrist is orthogonal (planar arms have none).
+                let orthogonal = $solver != "planar";
+                assert_eq!(
+                    wrist == WristPair::HalfTurn,
+                    orthogonal,
+                    "table {k}:\n{src}"
+                );
             }
         }
     };
@@ -308,3 +374,14 @@ family_test!(
     None
 );
 family_test!(planar_tables, 55, planar_like, "planar", Some(&[0, 1, 5]));
+
+#[test]
+fn general_wrist_tables() {
+    let mut rng = XorShift64::new(66);
+    for k in 0..TABLES {
+        let src = puma_like_wrist(&mut rng, general_twist);
+        let (robot, _) = load_str(&src, &format!("table{k}.toml")).unwrap();
+        let wrist = self_test(&robot, "spherical_two_parallel", &mut rng, None, false);
+        assert_eq!(wrist, WristPair::Solve, "table {k}:\n{src}");
+    }
+}

@@ -6,6 +6,7 @@
 use std::fmt::Write;
 
 use kinegen::ik::dispatch::{solve, Checks, DynBranch, DynGeometry, DynPlan, DynProblem};
+use kinegen::ik::families::WristPair;
 use kinegen_core::kinematics::ik::family::Family;
 use kinegen_core::kinematics::ik::IkModel;
 use kinegen_core::model::robot::JointKind;
@@ -67,6 +68,11 @@ impl<'a> Solver<'a> {
                 revolute: revolute_joints,
                 prismatic,
                 locked: ik.plan.locked,
+                wrist: if ik.plan.wrist_half_turn {
+                    WristPair::HalfTurn
+                } else {
+                    WristPair::Solve
+                },
             },
             geometry: DynGeometry {
                 h: v.h,

@@ -6,7 +6,7 @@
 use std::string::String;
 use std::vec::Vec;
 
-use super::families;
+use super::families::{self, WristPair};
 use super::geometry::{Geometry, Pose, M3, V3};
 use super::solutions::{finish, with_locked, without, Candidates, Check, IkSolutions};
 
@@ -36,6 +36,8 @@ pub struct DynPlan {
     pub prismatic: Option<usize>,
     /// The locked joint of a 7-joint arm.
     pub locked: Option<usize>,
+    /// How the second wrist solution is found (6-joint families).
+    pub wrist: WristPair,
 }
 
 /// One solution (see [`super::IkBranch`]).
@@ -128,15 +130,16 @@ fn finished<const N: usize, const K: usize>(
     branches(&finish(c, &pose, &revolute, &limits, checks))
 }
 
-fn six(name: &str, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
-    Some(match name {
+fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
+    let w = plan.wrist;
+    Some(match plan.solver.as_str() {
         "three_parallel_two_intersecting" => {
-            families::three_parallel_two_intersecting(g, pose, free)
+            families::three_parallel_two_intersecting(g, pose, free, w)
         }
-        "spherical_two_parallel" => families::spherical_two_parallel(g, pose, free),
-        "spherical_two_intersecting" => families::spherical_two_intersecting(g, pose, free),
+        "spherical_two_parallel" => families::spherical_two_parallel(g, pose, free, w),
+        "spherical_two_intersecting" => families::spherical_two_intersecting(g, pose, free, w),
         "spherical_two_intersecting_prismatic" => {
-            families::spherical_two_intersecting_prismatic(g, pose, free)
+            families::spherical_two_intersecting_prismatic(g, pose, free, w)
         }
         _ => return None,
     })
@@ -172,7 +175,7 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
         (6, None) => {
             let g = geometry::<6>(pr.geometry);
             let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
-            let c = six(&pr.plan.solver, &g, &pose, &free).ok_or("unknown solver")?;
+            let c = six(pr.plan, &g, &pose, &free).ok_or("unknown solver")?;
             Ok(finished(&c, pr, checks))
         }
         (7, Some(k)) => {
@@ -180,7 +183,7 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
             let g: Geometry<6> = g7.lock(k, pr.q_locked);
             let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
             let free: [f64; 6] = without(&free7, k);
-            let c6 = six(&pr.plan.solver, &g, &pose, &free).ok_or("unknown solver")?;
+            let c6 = six(pr.plan, &g, &pose, &free).ok_or("unknown solver")?;
             let c = with_locked::<6, 7, 8>(&c6, k, pr.q_locked);
             Ok(finished(&c, pr, checks))
         }

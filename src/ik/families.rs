@@ -13,6 +13,7 @@
 use super::geometry::{closest_points, rot, Angle, Geometry, Pose, M3, V3};
 use super::solutions::Candidates;
 use super::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit};
+use core::f64::consts::PI;
 
 /// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
 const PARALLEL: f64 = 1e-20;
@@ -45,13 +46,51 @@ fn orthogonal(k: &V3) -> V3 {
     k.cross(&e)
 }
 
+/// How a solver finds the second of a wrist's two solutions (the two roots of q5).
+///
+/// Write the last three rotations as `rot(a, θa) rot(h5, q5) rot(h6, q6)`, with `a` = h4
+/// for a spherical wrist and `a` = h2 ∥ h3 ∥ h4 for the UR family (θa = q4, or θ = q2 ±
+/// q3 ± q4). When `a ⟂ h5` and `h5 ⟂ h6` at `q = 0` — an orthogonal wrist — `h6 =
+/// rot(h5, o) a` for some `o`, `rot(a, π) rot(h5, x) = rot(h5, −x) rot(a, π)` and
+/// `rot(a, π) rot(h6, π) = rot(h5, −2o)`, so `(θa + π, −q5 − 2o, q6 + π)` is the other
+/// solution: the other root of q5's equation (`φ ± d` with `φ = −o`) takes θa and q6 from
+/// the first by half turns, without a subproblem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WristPair {
+    /// Both solutions from the subproblems (any wrist geometry).
+    Solve,
+    /// The second is the first turned by half turns about `a` and `h6` (the engine proved
+    /// the wrist orthogonal, exactly, at expansion time).
+    HalfTurn,
+}
+
 /// The spherical wrist (joints 4, 5, 6 meet in a point): `(q4, q5, q6)` with
 /// `R4 R5 R6 = r36`. SP4 for q5, SP1 for q4 and q6; at `h4 ∥ R5 h6` (q5 at its singular
-/// value) q4 is free and q6 is taken from the whole rotation.
-fn wrist(h: &[V3; 3], r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) -> usize {
+/// value) q4 is free and q6 is taken from the whole rotation. With
+/// [`WristPair::HalfTurn`] the second root of q5 takes `(q4 + π, q6 + π)` from the first.
+fn wrist(
+    h: &[V3; 3],
+    r36: &M3,
+    free: [f64; 2],
+    pair: WristPair,
+    out: &mut [([f64; 3], Fit); 2],
+) -> usize {
     let [h4, h5, h6] = h;
     let (r36_h6, r36t_h4) = (r36 * h6, r36.transpose() * h4);
     let t5 = sp4(h4, h6, h5, h4.dot(&r36_h6), 0.0);
+    if pair == WristPair::HalfTurn && t5.n == 2 {
+        let q5 = t5.angles[0];
+        let r5 = q5.rot(h5);
+        let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
+        // Two distinct roots: h4 ∦ R5 h6, so q4 is not free.
+        if f4 != Fit::Free {
+            let (q6, f6) = sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1]);
+            let fit = t5.fit.and(f4).and(f6);
+            out[0] = ([q4, q5.theta, q6], fit);
+            out[1] = ([wrap(q4 + PI), t5.angles[1].theta, wrap(q6 + PI)], fit);
+            return 2;
+        }
+    }
     for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
         let r5 = q5.rot(h5);
         let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
@@ -77,11 +116,18 @@ fn with_wrist(
     fit: Fit,
     r06: &M3,
     free: &[f64; 6],
+    pair: WristPair,
     out: &mut Candidates<6, 8>,
 ) {
     let r = r123.transpose() * r06;
     let mut w = [([0.0; 3], Fit::Exact); 2];
-    let n = wrist(&[g.h[3], g.h[4], g.h[5]], &r, [free[3], free[5]], &mut w);
+    let n = wrist(
+        &[g.h[3], g.h[4], g.h[5]],
+        &r,
+        [free[3], free[5]],
+        pair,
+        &mut w,
+    );
     for &(q456, f) in &w[..n] {
         let q = [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
         out.push(q, fit.and(f));
@@ -104,8 +150,14 @@ fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
 ///    h2 ∥ h3 keep the h2 component)
 /// 3. q3 — SP3: `‖p23 + rot(h3, q3) p34‖ = ‖rot(−h1, q1) p16 − p12‖`
 /// 4. q2 — SP1: `rot(h2, q2) (p23 + R3 p34) = rot(−h1, q1) p16 − p12`
-/// 5. q5 — SP4, q4 and q6 — SP1 on `R36 = (R1 R2 R3)ᵀ R06`.
-pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Candidates<6, 8> {
+/// 5. q5 — SP4, q4 and q6 — SP1 on `R36 = (R1 R2 R3)ᵀ R06` (the second root of q5 from
+///    the first with [`WristPair::HalfTurn`]).
+pub fn spherical_two_parallel(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    pair: WristPair,
+) -> Candidates<6, 8> {
     let mut out = Candidates::default();
     let (r06, w0, w) = wrist_centre(g, pose);
     let [h1, h2, h3, ..] = g.h;
@@ -130,7 +182,7 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> 
             let (q2, f2) = sp1_angle(&(p23 + r3 * p34), &v, &h2, free[1]);
             let fit = t1.fit.and(t3.fit).and(f2);
             let arm = ([q1.theta, q2.theta, q3.theta], r1 * q2.rot(&h2) * r3);
-            with_wrist(g, arm, fit, &r06, free, &mut out);
+            with_wrist(g, arm, fit, &r06, free, pair, &mut out);
         }
     }
     out
@@ -146,6 +198,7 @@ pub fn spherical_two_intersecting(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
+    pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
     let (r06, w0, w) = wrist_centre(g, pose);
@@ -163,7 +216,7 @@ pub fn spherical_two_intersecting(
                 [q1.theta, q2.theta, q3.theta],
                 q1.rot(&h1) * q2.rot(&h2) * r3,
             );
-            with_wrist(g, arm, t3.fit.and(f12), &r06, free, &mut out);
+            with_wrist(g, arm, t3.fit.and(f12), &r06, free, pair, &mut out);
         }
     }
     out
@@ -178,6 +231,7 @@ pub fn spherical_two_intersecting_prismatic(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
+    pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
     let (r06, w0, w) = wrist_centre(g, pose);
@@ -206,7 +260,7 @@ pub fn spherical_two_intersecting_prismatic(
         for (q1, q2) in &t12[..n] {
             // Joint 3 slides: it turns nothing.
             let arm = ([q1.theta, q2.theta, q3], q1.rot(&h1) * q2.rot(&h2));
-            with_wrist(g, arm, fit.and(f12), &r06, free, &mut out);
+            with_wrist(g, arm, fit.and(f12), &r06, free, pair, &mut out);
         }
     }
     out
@@ -221,6 +275,9 @@ pub fn spherical_two_intersecting_prismatic(
 /// 5. q3 — SP3, q2 — SP1 on `d = R1ᵀ p16 − p12 − rot(h2, θ) p45`; q4 from θ
 /// 6. q6 — SP1: `rot(h6, q6) h5 = (R1 R2 R3 R4 R5)ᵀ R06 h5`.
 ///
+/// With [`WristPair::HalfTurn`] (`h2 ⟂ h5 ⟂ h6`) the second root of q5 takes
+/// `(θ + π, q6 + π)` from the first instead of steps 4 and 6.
+///
 /// At the wrist singularity (`R5 h6 ∥ h2`, so h6 ∥ h2 ∥ h3 ∥ h4) the orientation fixes
 /// only `θ ± q6`; the position then fixes q2, q3 once q4 is chosen: q4 = `free`, q3 — SP3
 /// and q2 — SP1 on the arm `p23 + R3 (p34 + R4 p45)`, q6 from the rotation.
@@ -228,6 +285,7 @@ pub fn three_parallel_two_intersecting(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
+    pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
     let c56 = meet(g, 4, 5);
@@ -249,47 +307,71 @@ pub fn three_parallel_two_intersecting(
         let (target_h5, target_h6) = (target * h5, target * h6);
         let arm = r1t * p16 - p12;
         let t5 = sp4(&h2, &h6, &h5, h2.dot(&target_h6), free[4]);
-        for q5 in t5.as_slice() {
+        // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
+        let mut turned: Option<(Angle, Fit, (f64, Fit))> = None;
+        for (k, q5) in t5.as_slice().iter().enumerate() {
             let r5 = q5.rot(&h5);
-            let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
-            let fit = t1.fit.and(t5.fit).and(ft);
-            // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist singularity q4 =
-            // free — or, when that q4 puts the wrist out of the elbow's reach, θ chosen
-            // mid-range of what the elbow can reach, nearest to free's.
-            let mut mode = if ft == Fit::Free {
-                Arm::Q4(free[3])
-            } else {
-                Arm::Theta(theta)
-            };
-            if let Arm::Q4(q4) = mode {
-                let known = p34 + rot(&h4, q4) * p45;
-                let t = sp3(
-                    &flat(&h2, &known),
-                    &flat(&h2, &(-p23)),
-                    &h3,
-                    flat(&h2, &arm).norm(),
-                    0.0,
-                );
-                if t.fit == Fit::LeastSquares {
-                    let hint = free[1] + s3 * free[2] + s4 * free[3];
-                    let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
-                    mode = Arm::Theta(Angle::new(theta));
-                }
-            }
             // q6 — SP1: R6 h5 = (R14 R5)ᵀ R1ᵀ R06 h5 with R14 = rot(h2, θ): with θ known,
             // one per (q1, q5), whichever elbow.
             let q6_for = |r14: &M3| {
                 let x = r5.transpose() * (r14.transpose() * target_h5);
                 sp1(&h5, &x, &h6, free[5])
             };
+            let (mode, ft, q6_turned) = match (k, turned) {
+                // (θ + π, the other q5, q6 + π) solves the wrist like (θ, q5, q6).
+                (1, Some((t, ft, (q6, f6)))) => {
+                    let t = Angle {
+                        theta: wrap(t.theta + PI),
+                        sin: -t.sin,
+                        cos: -t.cos,
+                    };
+                    (Arm::Theta(t), ft, Some((wrap(q6 + PI), f6)))
+                }
+                _ => {
+                    let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
+                    // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist
+                    // singularity q4 = free — or, when that q4 puts the wrist out of the
+                    // elbow's reach, θ chosen mid-range of what the elbow can reach,
+                    // nearest to free's.
+                    let mut mode = if ft == Fit::Free {
+                        Arm::Q4(free[3])
+                    } else {
+                        Arm::Theta(theta)
+                    };
+                    if let Arm::Q4(q4) = mode {
+                        let known = p34 + rot(&h4, q4) * p45;
+                        let t = sp3(
+                            &flat(&h2, &known),
+                            &flat(&h2, &(-p23)),
+                            &h3,
+                            flat(&h2, &arm).norm(),
+                            0.0,
+                        );
+                        if t.fit == Fit::LeastSquares {
+                            let hint = free[1] + s3 * free[2] + s4 * free[3];
+                            let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
+                            mode = Arm::Theta(Angle::new(theta));
+                        }
+                    }
+                    (mode, ft, None)
+                }
+            };
+            let fit = t1.fit.and(t5.fit).and(ft);
             let (reach, known, q6_known) = match mode {
                 Arm::Theta(t) => {
                     let r14 = t.rot(&h2);
-                    (arm - r14 * p45, p34, q6_for(&r14))
+                    let q6 = q6_turned.unwrap_or_else(|| q6_for(&r14));
+                    (arm - r14 * p45, p34, q6)
                 }
                 // θ, so q6, depends on the elbow: found per q3 below.
                 Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45, (0.0, Fit::Exact)),
             };
+            if let (0, WristPair::HalfTurn, Arm::Theta(t)) = (k, pair, mode) {
+                // θ from the wrist (not the singular branch's choice).
+                if ft != Fit::Free {
+                    turned = Some((t, ft, q6_known));
+                }
+            }
             // In the plane ⟂ h2 (the components along h2 agree by step 2).
             let t3 = sp3(
                 &flat(&h2, &known),
@@ -418,21 +500,72 @@ mod tests {
         let g = ur5();
         let q = [0.3, -1.1, 1.4, -0.6, 0.9, 2.0];
         let pose = g.fk(&q);
-        let sols = three_parallel_two_intersecting(&g, &pose, &[0.0; 6]);
-        assert_eq!(sols.as_slice().len(), 8);
-        for c in sols.as_slice() {
-            assert_eq!(c.fit, Fit::Exact);
-            let t = g.fk(&c.q);
+        let solve = three_parallel_two_intersecting(&g, &pose, &[0.0; 6], WristPair::Solve);
+        // The UR5's wrist is orthogonal (h2 ⟂ h5 ⟂ h6): the half-turn shortcut
+        // gives the same eight solutions, in the same order.
+        let turned = three_parallel_two_intersecting(&g, &pose, &[0.0; 6], WristPair::HalfTurn);
+        for sols in [solve, turned] {
+            assert_eq!(sols.as_slice().len(), 8);
+            for c in sols.as_slice() {
+                assert_eq!(c.fit, Fit::Exact);
+                let t = g.fk(&c.q);
+                assert!(
+                    (t.p - pose.p).norm() < 1e-12 && (t.r - pose.r).norm() < 1e-12,
+                    "{:?}",
+                    c.q
+                );
+            }
+            assert!(sols
+                .as_slice()
+                .iter()
+                .any(|c| (0..6).all(|i| wrap(c.q[i] - q[i]).abs() < 1e-9)));
+        }
+        for (a, b) in solve.as_slice().iter().zip(turned.as_slice()) {
             assert!(
-                (t.p - pose.p).norm() < 1e-12 && (t.r - pose.r).norm() < 1e-12,
-                "{:?}",
-                c.q
+                (0..6).all(|i| wrap(a.q[i] - b.q[i]).abs() < 1e-12),
+                "{a:?} {b:?}"
             );
         }
-        assert!(sols
-            .as_slice()
-            .iter()
-            .any(|c| (0..6).all(|i| wrap(c.q[i] - q[i]).abs() < 1e-9)));
+    }
+
+    /// A PUMA-like arm at q = 0 (shoulder offset, elbow offset): spherical, orthogonal wrist.
+    fn puma() -> Geometry<6> {
+        let (a2, a3, d3, d4) = (0.4318, 0.0203, 0.15005, 0.4318);
+        let (z, y) = (V3::z(), V3::y());
+        Geometry {
+            h: [z, y, y, z, y, z],
+            p: [
+                V3::zeros(),
+                V3::zeros(),
+                V3::new(a2, d3, 0.0),
+                V3::new(a2 + a3, d3, d4),
+                V3::new(a2 + a3, d3, d4),
+                V3::new(a2 + a3, d3, d4),
+            ],
+            prismatic: [false; 6],
+            r_tool: M3::identity(),
+            p_tool: V3::new(a2 + a3, d3, d4),
+        }
+    }
+
+    #[test]
+    fn orthogonal_spherical_wrist_half_turns() {
+        let g = puma();
+        let q = [0.4, -0.7, 0.9, 1.2, -0.8, 0.3];
+        let pose = g.fk(&q);
+        let solve = spherical_two_parallel(&g, &pose, &[0.0; 6], WristPair::Solve);
+        let turned = spherical_two_parallel(&g, &pose, &[0.0; 6], WristPair::HalfTurn);
+        assert_eq!(solve.as_slice().len(), 8);
+        assert_eq!(turned.as_slice().len(), 8);
+        for (a, b) in solve.as_slice().iter().zip(turned.as_slice()) {
+            assert_eq!((a.fit, b.fit), (Fit::Exact, Fit::Exact));
+            assert!(
+                (0..6).all(|i| wrap(a.q[i] - b.q[i]).abs() < 1e-12),
+                "{a:?} {b:?}"
+            );
+            let t = g.fk(&b.q);
+            assert!((t.p - pose.p).norm() < 1e-12 && (t.r - pose.r).norm() < 1e-12);
+        }
     }
 
     #[test]
@@ -440,7 +573,7 @@ mod tests {
         let g = ur5();
         let q = [0.3, -1.1, 1.4, -0.6, 0.0, 2.0];
         let pose = g.fk(&q);
-        let sols = three_parallel_two_intersecting(&g, &pose, &q);
+        let sols = three_parallel_two_intersecting(&g, &pose, &q, WristPair::Solve);
         let hit = sols
             .as_slice()
             .iter()
@@ -449,7 +582,7 @@ mod tests {
         assert_eq!(hit.fit, Fit::Free);
         // Any other value of the free joint is a solution too.
         for free in [q, [0.0; 6]] {
-            let sols = three_parallel_two_intersecting(&g, &pose, &free);
+            let sols = three_parallel_two_intersecting(&g, &pose, &free, WristPair::Solve);
             assert!(!sols.as_slice().is_empty());
             for c in sols.as_slice() {
                 let t = g.fk(&c.q);

@@ -221,7 +221,14 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             revolute,
             prismatic,
         } => format!("{solver}(&{g}, &target, &{revolute:?}, {prismatic:?}, {free})"),
-        _ => format!("{solver}(&{g}, &target, {free})"),
+        _ => {
+            let pair = if model.plan.wrist_half_turn {
+                "HalfTurn"
+            } else {
+                "Solve"
+            };
+            format!("{solver}(&{g}, &target, {free}, ::kinegen::ik::families::WristPair::{pair})")
+        }
     };
     let (args, doc) = match locked {
         None => {

@@ -86,6 +86,11 @@ impl Axes {
         is_zero(&self.cross(&self.h[i], d))
     }
 
+    /// Axes `i` and `j` are perpendicular (`h_i · h_j = 0` identically).
+    pub fn perpendicular(&self, i: usize, j: usize) -> bool {
+        self.dot(&self.h[i], &self.h[j]).is_zero()
+    }
+
     /// `h_i · h_j` when it is a constant (`±1` for parallel unit axes).
     pub fn dot_constant(&self, i: usize, j: usize) -> Option<f64> {
         self.dot(&self.h[i], &self.h[j])

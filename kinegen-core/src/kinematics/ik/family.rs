@@ -57,6 +57,11 @@ pub struct IkPlan {
     pub steps: Vec<String>,
     /// Most solutions a pose can have.
     pub max_solutions: usize,
+    /// The wrist is orthogonal (`a ⟂ h5 ⟂ h6` at `q = 0`, with `a` the axis turning
+    /// before h5: h4, or h2 ∥ h3 ∥ h4 for the UR family), decided exactly: the second
+    /// root of q5 takes the other wrist joints from the first by half turns
+    /// (`kinegen::ik::families::WristPair::HalfTurn`).
+    pub wrist_half_turn: bool,
 }
 
 impl Family {
@@ -103,14 +108,20 @@ pub fn plan(chain: &Chain, max_terms: usize) -> Result<IkPlan, String> {
             let sym = SymbolicChain::at_zero(chain, max_terms, None);
             let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
             let labels: Vec<usize> = (0..6).collect();
-            six(&axes, &kinds, &labels).map(|(family, steps)| finish(family, None, steps))
+            six(&axes, &kinds, &labels)
+                .map(|(family, steps, half)| finish(family, None, steps, half))
         }
         7 => seven(chain, max_terms, &kinds),
         _ => Err(OUT_OF_DOMAIN.into()),
     }
 }
 
-fn finish(family: Family, locked: Option<usize>, steps: Vec<String>) -> IkPlan {
+fn finish(
+    family: Family,
+    locked: Option<usize>,
+    steps: Vec<String>,
+    wrist_half_turn: bool,
+) -> IkPlan {
     let name = match locked {
         Some(k) => format!("{} (joint {} locked)", family.title(), k + 1),
         None => family.title().to_string(),
@@ -125,6 +136,7 @@ fn finish(family: Family, locked: Option<usize>, steps: Vec<String>) -> IkPlan {
         name,
         steps,
         max_solutions,
+        wrist_half_turn,
     }
 }
 
@@ -133,8 +145,28 @@ fn six(
     axes: &Axes,
     kinds: &[JointKind],
     labels: &[usize],
-) -> Result<(Family, Vec<String>), String> {
+) -> Result<(Family, Vec<String>, bool), String> {
     let j = |i: usize| labels[i] + 1;
+    // Orthogonal wrist about `a` (the axis turning before h5): the half-turn pair.
+    let orthogonal = |a: usize| {
+        axes.perpendicular(labels[a], labels[4]) && axes.perpendicular(labels[4], labels[5])
+    };
+    let with_pair = |family: Family, mut steps: Vec<String>, a: usize| {
+        let half = orthogonal(a);
+        if half {
+            let angle = match family {
+                Family::ThreeParallelTwoIntersecting => "θ".to_string(),
+                _ => format!("q{}", j(a)),
+            };
+            steps.push(format!(
+                "the other root of q{e}: {angle} + π and q{f} + π with it, no subproblem — h{d} ⟂ h{e} ⟂ h{f} (an orthogonal wrist, decided exactly)",
+                d = j(a),
+                e = j(4),
+                f = j(5)
+            ));
+        }
+        (family, steps, half)
+    };
     let all_revolute = labels.iter().all(|&i| kinds[i] == JointKind::Revolute);
     let mut why = Vec::new();
     // Three parallel, two intersecting.
@@ -155,7 +187,13 @@ fn six(
         Ok(())
     };
     match c {
-        Ok(()) => return Ok((Family::ThreeParallelTwoIntersecting, steps_ur(j))),
+        Ok(()) => {
+            return Ok(with_pair(
+                Family::ThreeParallelTwoIntersecting,
+                steps_ur(j),
+                1,
+            ))
+        }
         Err(e) => why.push(format!("h2 ∥ h3 ∥ h4, h5 ∩ h6: {e}")),
     }
     // The spherical-wrist families.
@@ -172,16 +210,22 @@ fn six(
         && axes.parallel(labels[1], labels[2])
         && !axes.parallel(labels[0], labels[1])
     {
-        return Ok((Family::SphericalTwoParallel, steps_spherical_parallel(j)));
+        return Ok(with_pair(
+            Family::SphericalTwoParallel,
+            steps_spherical_parallel(j),
+            3,
+        ));
     } else if axes.intersect(labels[0], labels[1]) {
         return Ok(match third {
-            JointKind::Revolute => (
+            JointKind::Revolute => with_pair(
                 Family::SphericalTwoIntersecting,
                 steps_spherical_intersecting(j, false),
+                3,
             ),
-            JointKind::Prismatic => (
+            JointKind::Prismatic => with_pair(
                 Family::SphericalTwoIntersectingPrismatic,
                 steps_spherical_intersecting(j, true),
+                3,
             ),
         });
     } else {
@@ -209,7 +253,7 @@ fn seven(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan,
         };
         let labels: Vec<usize> = (0..7).filter(|&i| i != k).collect();
         match six(&axes, kinds, &labels) {
-            Ok((family, steps)) => return Ok(finish(family, Some(k), steps)),
+            Ok((family, steps, half)) => return Ok(finish(family, Some(k), steps, half)),
             Err(e) => {
                 let rest: Vec<String> = labels.iter().map(|i| (i + 1).to_string()).collect();
                 why.push(format!(
@@ -262,7 +306,7 @@ fn planar(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan
         revolute,
         prismatic: prismatic.first().copied(),
     };
-    Ok(finish(family, None, steps))
+    Ok(finish(family, None, steps, false))
 }
 
 fn steps_ur(j: impl Fn(usize) -> usize) -> Vec<String> {
