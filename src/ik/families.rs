@@ -12,7 +12,7 @@
 
 use super::geometry::{closest_points, rot, Angle, Geometry, Pose, M3, V3};
 use super::solutions::Candidates;
-use super::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit};
+use super::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit, Sp3, Sp4};
 use core::f64::consts::PI;
 
 /// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
@@ -64,70 +64,75 @@ pub enum WristPair {
     HalfTurn,
 }
 
-/// The spherical wrist (joints 4, 5, 6 meet in a point): `(q4, q5, q6)` with
-/// `R4 R5 R6 = r36`. SP4 for q5, SP1 for q4 and q6; at `h4 ∥ R5 h6` (q5 at its singular
-/// value) q4 is free and q6 is taken from the whole rotation. With
-/// [`WristPair::HalfTurn`] the second root of q5 takes `(q4 + π, q6 + π)` from the first.
-fn wrist(
-    h: &[V3; 3],
-    r36: &M3,
-    free: [f64; 2],
+/// The spherical wrist (joints 4, 5, 6 meet in a point), set up once per solve: its axes,
+/// the circle SP4 cuts for q5 (the same for every arm branch), how the second root is
+/// found.
+struct Wrist {
+    h: [V3; 3],
+    q5: Sp4,
     pair: WristPair,
-    out: &mut [([f64; 3], Fit); 2],
-) -> usize {
-    let [h4, h5, h6] = h;
-    let (r36_h6, r36t_h4) = (r36 * h6, r36.transpose() * h4);
-    let t5 = sp4(h4, h6, h5, h4.dot(&r36_h6), 0.0);
-    if pair == WristPair::HalfTurn && t5.n == 2 {
-        let q5 = t5.angles[0];
-        let r5 = q5.rot(h5);
-        let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
-        // Two distinct roots: h4 ∦ R5 h6, so q4 is not free.
-        if f4 != Fit::Free {
-            let (q6, f6) = sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1]);
-            let fit = t5.fit.and(f4).and(f6);
-            out[0] = ([q4, q5.theta, q6], fit);
-            out[1] = ([wrap(q4 + PI), t5.angles[1].theta, wrap(q6 + PI)], fit);
-            return 2;
+}
+
+impl Wrist {
+    fn new(g: &Geometry<6>, pair: WristPair) -> Wrist {
+        let h = [g.h[3], g.h[4], g.h[5]];
+        // h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.
+        let q5 = Sp4::new(&h[0], &h[2], &h[1]);
+        Wrist { h, q5, pair }
+    }
+
+    /// `(q4, q5, q6)` with `R4 R5 R6 = r36`: SP4 for q5, SP1 for q4 and q6; at
+    /// `h4 ∥ R5 h6` (q5 at its singular value) q4 is free and q6 is taken from the whole
+    /// rotation. With [`WristPair::HalfTurn`] the second root of q5 takes `(q4 + π,
+    /// q6 + π)` from the first.
+    fn solve(&self, r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) -> usize {
+        let [h4, h5, h6] = &self.h;
+        let (r36_h6, r36t_h4) = (r36 * h6, r36.transpose() * h4);
+        let t5 = self.q5.solve(h4.dot(&r36_h6), 0.0);
+        if self.pair == WristPair::HalfTurn && t5.n == 2 {
+            let q5 = t5.angles[0];
+            let r5 = q5.rot(h5);
+            let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
+            // Two distinct roots: h4 ∦ R5 h6, so q4 is not free.
+            if f4 != Fit::Free {
+                let (q6, f6) = sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1]);
+                let fit = t5.fit.and(f4).and(f6);
+                out[0] = ([q4, q5.theta, q6], fit);
+                out[1] = ([wrap(q4 + PI), t5.angles[1].theta, wrap(q6 + PI)], fit);
+                return 2;
+            }
         }
+        for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
+            let r5 = q5.rot(h5);
+            let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
+            let (q6, f6) = if f4 == Fit::Free {
+                // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ r36.
+                let m = (rot(h4, q4) * r5).transpose() * r36;
+                let x = orthogonal(h6);
+                sp1(&x, &(m * x), h6, free[1])
+            } else {
+                // R6 (R36ᵀ h4) = R5ᵀ h4, since R36ᵀ h4 = R6ᵀ R5ᵀ h4.
+                sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1])
+            };
+            *o = ([q4, q5.theta, q6], t5.fit.and(f4).and(f6));
+        }
+        t5.n
     }
-    for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
-        let r5 = q5.rot(h5);
-        let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
-        let (q6, f6) = if f4 == Fit::Free {
-            // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ r36.
-            let m = (rot(h4, q4) * r5).transpose() * r36;
-            let x = orthogonal(h6);
-            sp1(&x, &(m * x), h6, free[1])
-        } else {
-            // R6 (R36ᵀ h4) = R5ᵀ h4, since R36ᵀ h4 = R6ᵀ R5ᵀ h4.
-            sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1])
-        };
-        *o = ([q4, q5.theta, q6], t5.fit.and(f4).and(f6));
-    }
-    t5.n
 }
 
 /// Adds the wrist solutions for the arm joints `q123` to `out`; `r123 = R1 R2 R3` (a
 /// prismatic joint turns nothing), so the wrist's rotation is `R36 = r123ᵀ R06`.
 fn with_wrist(
-    g: &Geometry<6>,
+    wrist: &Wrist,
     (q123, r123): ([f64; 3], M3),
     fit: Fit,
     r06: &M3,
     free: &[f64; 6],
-    pair: WristPair,
     out: &mut Candidates<6, 8>,
 ) {
     let r = r123.transpose() * r06;
     let mut w = [([0.0; 3], Fit::Exact); 2];
-    let n = wrist(
-        &[g.h[3], g.h[4], g.h[5]],
-        &r,
-        [free[3], free[5]],
-        pair,
-        &mut w,
-    );
+    let n = wrist.solve(&r, [free[3], free[5]], &mut w);
     for &(q456, f) in &w[..n] {
         let q = [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
         out.push(q, fit.and(f));
@@ -159,30 +164,26 @@ pub fn spherical_two_parallel(
     pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
+    let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let [h1, h2, h3, ..] = g.h;
     let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
     let p16 = w - g.p[0];
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), free[0]);
+    // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial offsets
+    // in the distances, whose rounding would blur the elbow's double root.
+    let elbow = Sp3::new(&flat(&h3, &p34), &flat(&h3, &(-p23)), &h3);
     for q1 in t1.as_slice() {
         // R1 = rot(h1, q1); rot(−h1, q1) = R1ᵀ.
         let r1 = q1.rot(&h1);
         let v = r1.transpose() * p16 - p12;
-        // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial
-        // offsets in the distances, whose rounding would blur the elbow's double root.
-        let t3 = sp3(
-            &flat(&h3, &p34),
-            &flat(&h3, &(-p23)),
-            &h3,
-            flat(&h3, &v).norm(),
-            free[2],
-        );
+        let t3 = elbow.solve(flat(&h3, &v).norm(), free[2]);
         for q3 in t3.as_slice() {
             let r3 = q3.rot(&h3);
             let (q2, f2) = sp1_angle(&(p23 + r3 * p34), &v, &h2, free[1]);
             let fit = t1.fit.and(t3.fit).and(f2);
             let arm = ([q1.theta, q2.theta, q3.theta], r1 * q2.rot(&h2) * r3);
-            with_wrist(g, arm, fit, &r06, free, pair, &mut out);
+            with_wrist(&wrist, arm, fit, &r06, free, &mut out);
         }
     }
     out
@@ -201,6 +202,7 @@ pub fn spherical_two_intersecting(
     pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
+    let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let c12 = meet(g, 0, 1);
     let [h1, h2, h3, ..] = g.h;
@@ -216,7 +218,7 @@ pub fn spherical_two_intersecting(
                 [q1.theta, q2.theta, q3.theta],
                 q1.rot(&h1) * q2.rot(&h2) * r3,
             );
-            with_wrist(g, arm, t3.fit.and(f12), &r06, free, pair, &mut out);
+            with_wrist(&wrist, arm, t3.fit.and(f12), &r06, free, &mut out);
         }
     }
     out
@@ -234,6 +236,7 @@ pub fn spherical_two_intersecting_prismatic(
     pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
+    let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let c12 = meet(g, 0, 1);
     let [h1, h2, h3, ..] = g.h;
@@ -260,7 +263,7 @@ pub fn spherical_two_intersecting_prismatic(
         for (q1, q2) in &t12[..n] {
             // Joint 3 slides: it turns nothing.
             let arm = ([q1.theta, q2.theta, q3], q1.rot(&h1) * q2.rot(&h2));
-            with_wrist(g, arm, fit.and(f12), &r06, free, pair, &mut out);
+            with_wrist(&wrist, arm, fit.and(f12), &r06, free, &mut out);
         }
     }
     out
@@ -301,12 +304,16 @@ pub fn three_parallel_two_intersecting(
     );
     let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34 + p45)), free[0]);
+    // The circles cut once per branch: h2ᵀ rot(h5, q5) h6 (step 3), and the elbow's with
+    // θ known (step 5, in the plane ⟂ h2).
+    let wrist5 = Sp4::new(&h2, &h6, &h5);
+    let elbow = Sp3::new(&flat(&h2, &p34), &flat(&h2, &(-p23)), &h3);
     for q1 in t1.as_slice() {
         let r1t = q1.rot(&h1).transpose();
         let target = r1t * r06;
         let (target_h5, target_h6) = (target * h5, target * h6);
         let arm = r1t * p16 - p12;
-        let t5 = sp4(&h2, &h6, &h5, h2.dot(&target_h6), free[4]);
+        let t5 = wrist5.solve(h2.dot(&target_h6), free[4]);
         // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
         let mut turned: Option<(Angle, Fit, (f64, Fit))> = None;
         for (k, q5) in t5.as_slice().iter().enumerate() {
@@ -373,13 +380,11 @@ pub fn three_parallel_two_intersecting(
                 }
             }
             // In the plane ⟂ h2 (the components along h2 agree by step 2).
-            let t3 = sp3(
-                &flat(&h2, &known),
-                &flat(&h2, &(-p23)),
-                &h3,
-                flat(&h2, &reach).norm(),
-                free[2],
-            );
+            let d3 = flat(&h2, &reach).norm();
+            let t3 = match mode {
+                Arm::Theta(_) => elbow.solve(d3, free[2]),
+                Arm::Q4(_) => sp3(&flat(&h2, &known), &flat(&h2, &(-p23)), &h3, d3, free[2]),
+            };
             for q3 in t3.as_slice() {
                 let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &reach, &h2, free[1]);
                 let (q4, (q6, f6)) = match mode {

@@ -149,7 +149,18 @@ fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
 /// With `cos φ = a / r`, `sin φ = a' / r`, `cos d = b / r`, `sin d = √(r² − b²) / r`, the
 /// roots `φ ± d` have `cos = (a b ∓ a' √…) / r²` and `sin = (a' b ± a √…) / r²`: one
 /// `atan2` per root and no `sin`/`cos` for the rotations built from it.
-fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> Roots {
+///
+/// With `phi` (the angle of `(ca, sa)`, known when the same circle is cut many times) each
+/// pair of roots costs one `atan2`, for `d`: `θ = φ ± d`.
+fn cos_equation(
+    ca: f64,
+    sa: f64,
+    b: f64,
+    terms: f64,
+    mag2: f64,
+    free: f64,
+    phi: Option<Angle>,
+) -> Roots {
     let rr = ca * ca + sa * sa;
     if rr <= ON_AXIS * scale(mag2) {
         // r = 0: every θ gives the same value; exact only if that is b.
@@ -171,22 +182,42 @@ fn cos_equation(ca: f64, sa: f64, b: f64, terms: f64, mag2: f64, free: f64) -> R
         } else {
             Fit::LeastSquares
         };
-        return Roots::one(Angle::atan2(sign * sa, sign * ca), fit);
+        let angle = match phi {
+            Some(phi) if sign > 0.0 => phi,
+            Some(phi) => Angle {
+                theta: wrap(phi.theta + core::f64::consts::PI),
+                sin: -phi.sin,
+                cos: -phi.cos,
+            },
+            None => Angle::atan2(sign * sa, sign * ca),
+        };
+        return Roots::one(angle, fit);
     }
     let sd = sqrt0(disc);
     let inv = 1.0 / rr;
-    let root = |sin: f64, cos: f64| {
-        let (sin, cos) = (sin * inv, cos * inv);
-        Angle {
-            theta: atan2(sin, cos),
-            sin,
-            cos,
+    // φ ± d, with d = atan2(√(r² − b²), b) ∈ [0, π].
+    let (plus, minus) = match phi {
+        Some(phi) => {
+            let d = atan2(sd, b);
+            (wrap(phi.theta + d), wrap(phi.theta - d))
         }
+        None => (
+            atan2(sa * b + ca * sd, ca * b - sa * sd),
+            atan2(sa * b - ca * sd, ca * b + sa * sd),
+        ),
     };
     Roots {
         angles: [
-            root(sa * b + ca * sd, ca * b - sa * sd),
-            root(sa * b - ca * sd, ca * b + sa * sd),
+            Angle {
+                theta: plus,
+                sin: (sa * b + ca * sd) * inv,
+                cos: (ca * b - sa * sd) * inv,
+            },
+            Angle {
+                theta: minus,
+                sin: (sa * b - ca * sd) * inv,
+                cos: (ca * b + sa * sd) * inv,
+            },
         ],
         n: 2,
         fit: Fit::Exact,
@@ -202,13 +233,90 @@ pub fn sp4(h: &V3, p: &V3, k: &V3, d: f64, free: f64) -> Roots {
 
 /// SP4 where `d` was computed from terms of size `terms` (its rounding error).
 fn sp4_terms(h: &V3, p: &V3, k: &V3, d: f64, terms: f64, free: f64) -> Roots {
-    // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
-    let pp = off_axis(k, p);
-    let ca = h.dot(&pp);
-    let sa = h.dot(&k.cross(p));
-    let b = d - h.dot(k) * k.dot(p);
-    let mag2 = h.norm_squared() * p.norm_squared();
-    cos_equation(ca, sa, b, terms, mag2, free)
+    let c = Sp4Circle::terms(h, p, k);
+    cos_equation(c.ca, c.sa, d - c.axial, terms, c.mag2, free, None)
+}
+
+/// What SP4 needs of `h`, `p`, `k` (`hᵀ rot(k, θ) p = ca cos θ + sa sin θ + axial`).
+#[derive(Clone, Copy, Debug)]
+struct Sp4Circle {
+    ca: f64,
+    sa: f64,
+    axial: f64,
+    mag2: f64,
+}
+
+impl Sp4Circle {
+    #[inline]
+    fn terms(h: &V3, p: &V3, k: &V3) -> Sp4Circle {
+        // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
+        Sp4Circle {
+            ca: h.dot(&off_axis(k, p)),
+            sa: h.dot(&k.cross(p)),
+            axial: h.dot(k) * k.dot(p),
+            mag2: h.norm_squared() * p.norm_squared(),
+        }
+    }
+}
+
+/// [`sp4`] for one `h`, `p`, `k` and many `d` (a solver's loop over the branches before
+/// it): the circle's terms and its angle `φ` found once, then one `atan2` per call.
+#[derive(Clone, Copy, Debug)]
+pub struct Sp4 {
+    circle: Sp4Circle,
+    phi: Option<Angle>,
+}
+
+impl Sp4 {
+    /// The circle of `p` about `k`, cut by planes `hᵀ x = d`.
+    #[inline]
+    pub fn new(h: &V3, p: &V3, k: &V3) -> Sp4 {
+        let circle = Sp4Circle::terms(h, p, k);
+        let (ca, sa) = (circle.ca, circle.sa);
+        // r = 0 (checked per call against the call's scale): no angle.
+        let phi = (ca * ca + sa * sa > 0.0).then(|| Angle::atan2(sa, ca));
+        Sp4 { circle, phi }
+    }
+
+    /// The roots for `d`, as [`sp4`] gives them.
+    #[inline]
+    pub fn solve(&self, d: f64, free: f64) -> Roots {
+        self.solve_terms(d, d.abs(), free)
+    }
+
+    #[inline]
+    fn solve_terms(&self, d: f64, terms: f64, free: f64) -> Roots {
+        let c = &self.circle;
+        cos_equation(c.ca, c.sa, d - c.axial, terms, c.mag2, free, self.phi)
+    }
+}
+
+/// [`sp3`] for one `p1`, `p2`, `k` and many distances `d`.
+#[derive(Clone, Copy, Debug)]
+pub struct Sp3 {
+    circle: Sp4,
+    n1: f64,
+    n2: f64,
+}
+
+impl Sp3 {
+    /// The circle of `p1` about `k`, against spheres about `p2`.
+    #[inline]
+    pub fn new(p1: &V3, p2: &V3, k: &V3) -> Sp3 {
+        Sp3 {
+            circle: Sp4::new(p2, p1, k),
+            n1: p1.norm_squared(),
+            n2: p2.norm_squared(),
+        }
+    }
+
+    /// The roots for `d`, as [`sp3`] gives them.
+    #[inline]
+    pub fn solve(&self, d: f64, free: f64) -> Roots {
+        let (n1, n2) = (self.n1, self.n2);
+        self.circle
+            .solve_terms(0.5 * (n1 + n2 - d * d), 0.5 * (n1 + n2 + d * d), free)
+    }
 }
 
 /// **SP3** — `θ` with `‖rot(k, θ) p1 − p2‖ = d`: where the circle of `p1` about `k` meets
@@ -292,22 +400,23 @@ pub fn wrap(theta: f64) -> f64 {
     use core::f64::consts::{PI, TAU};
     // Solver angles come from atan2 and sums of a few of them: almost always within one
     // turn, where a comparison is enough (`%` is a libm call, a fifth of a solve).
-    let mut t = theta;
+    let inside = |t: f64| t > -PI && t <= PI;
+    if inside(theta) {
+        return theta;
+    }
+    let t = if theta > PI { theta - TAU } else { theta + TAU };
+    if inside(t) {
+        return t;
+    }
+    // Further out (a caller's free value), or NaN: reduce exactly.
+    let t = theta % TAU;
     if t > PI {
-        t -= TAU;
+        t - TAU
     } else if t <= -PI {
-        t += TAU;
+        t + TAU
+    } else {
+        t
     }
-    if t > PI || t <= -PI {
-        // Further out (a caller's free value): reduce exactly as before.
-        t = theta % TAU;
-        if t > PI {
-            t -= TAU;
-        } else if t <= -PI {
-            t += TAU;
-        }
-    }
-    t
 }
 
 #[cfg(test)]
@@ -384,6 +493,39 @@ mod tests {
         assert!(pairs[..n]
             .iter()
             .any(|(t1, t2)| (t1.theta - 0.4).abs() < 1e-12 && (t2.theta - 0.9).abs() < 1e-12));
+    }
+
+    #[test]
+    fn prepared_circles_give_the_same_roots() {
+        let (h, k, p) = (
+            unit(1.0, 0.2, 0.3),
+            unit(0.0, 0.3, 1.0),
+            V3::new(0.5, -0.1, 0.2),
+        );
+        let c4 = Sp4::new(&h, &p, &k);
+        let (p1, p2) = (V3::new(1.0, 0.2, 0.0), V3::new(3.0, -0.5, 0.1));
+        let c3 = Sp3::new(&p1, &p2, &k);
+        let same = |a: Roots, b: Roots| {
+            assert_eq!((a.n, a.fit), (b.n, b.fit));
+            for (x, y) in a.as_slice().iter().zip(b.as_slice()) {
+                assert!(wrap(x.theta - y.theta).abs() < 1e-14, "{a:?} {b:?}");
+                assert!((x.sin - y.sin).abs() < 1e-15 && (x.cos - y.cos).abs() < 1e-15);
+            }
+        };
+        // Two roots, the double root at the circle's extremes, and misses on both sides.
+        let r = c4.circle.ca.hypot(c4.circle.sa);
+        let (top, bottom) = (c4.circle.axial + r, c4.circle.axial - r);
+        assert_eq!(c4.solve(top, 0.0).fit, Fit::Double);
+        assert_eq!(c4.solve(bottom, 0.0).fit, Fit::Double);
+        for d in [0.1, -0.2, top, bottom, 10.0, -10.0] {
+            same(c4.solve(d, 0.3), sp4(&h, &p, &k, d, 0.3));
+        }
+        for d in [2.5, 2.0, 1.5, 4.5, 0.1] {
+            same(c3.solve(d, 0.3), sp3(&p1, &p2, &k, d, 0.3));
+        }
+        // A point on the axis: no circle, the free value.
+        let on_axis = Sp4::new(&h, &(k * 2.0), &k);
+        same(on_axis.solve(0.1, 0.3), sp4(&h, &(k * 2.0), &k, 0.1, 0.3));
     }
 
     #[test]
