@@ -219,6 +219,7 @@ pub trait Check<const N: usize> {
 /// The robot's solution set from a solver's candidates: joint values wrapped into
 /// `limits`, least-squares and singular branches checked against `check`, duplicates
 /// removed.
+#[inline]
 pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     candidates: &Candidates<N, K>,
     pose: &Pose,
@@ -230,6 +231,7 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     // `unchecked[i]`: solution i came from a candidate some subproblem did not solve
     // exactly.
     let mut unchecked = [false; K];
+    let mut any_unchecked = false;
     for c in candidates.as_slice() {
         let mut q = c.q;
         for i in 0..N {
@@ -267,9 +269,13 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         // `subproblems`), far above SAME_CONFIGURATION. Only pairs with a singular or
         // least-squares candidate can be one configuration twice (the self-tests check
         // that no solution set holds a duplicate).
-        let copy = (0..out.len)
-            .filter(|&i| c.fit != Fit::Exact || unchecked[i])
-            .find(|&i| same(&out.items[i].q, &q, revolute));
+        let copy = if c.fit == Fit::Exact && !any_unchecked {
+            None
+        } else {
+            (0..out.len)
+                .filter(|&i| c.fit != Fit::Exact || unchecked[i])
+                .find(|&i| same(&out.items[i].q, &q, revolute))
+        };
         if let Some(i) = copy {
             // Keep the better of two copies of one configuration.
             if exact && !out.items[i].exact {
@@ -279,6 +285,7 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             continue;
         }
         unchecked[out.len] = c.fit != Fit::Exact;
+        any_unchecked |= c.fit != Fit::Exact;
         out.items[out.len] = branch;
         out.len += 1;
     }
