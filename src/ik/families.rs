@@ -307,11 +307,12 @@ pub fn three_parallel_two_intersecting(
     // The circles cut once per branch: h2ᵀ rot(h5, q5) h6 (step 3), and the elbow's with
     // θ known (step 5, in the plane ⟂ h2).
     let wrist5 = Sp4::new(&h2, &h6, &h5);
+    let (r06_h5, r06_h6) = (r06 * h5, r06 * h6);
     let elbow = Sp3::new(&flat(&h2, &p34), &flat(&h2, &(-p23)), &h3);
     for q1 in t1.as_slice() {
         let r1t = q1.rot(&h1).transpose();
-        let target = r1t * r06;
-        let (target_h5, target_h6) = (target * h5, target * h6);
+        // R1ᵀ R06 h5, R1ᵀ R06 h6: all the wrist needs of the target's rotation.
+        let (target_h5, target_h6) = (r1t * r06_h5, r1t * r06_h6);
         let arm = r1t * p16 - p12;
         let t5 = wrist5.solve(h2.dot(&target_h6), free[4]);
         // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
