@@ -120,19 +120,17 @@ impl Wrist {
     }
 }
 
-/// Adds the wrist solutions for the arm joints `q123` to `out`; `r123 = R1 R2 R3` (a
-/// prismatic joint turns nothing), so the wrist's rotation is `R36 = r123ᵀ R06`.
+/// Adds the wrist solutions for the arm joints `q123` to `out`; `r36 = (R1 R2 R3)ᵀ R06` is
+/// the rotation the wrist must make (a prismatic joint turns nothing).
 fn with_wrist(
     wrist: &Wrist,
-    (q123, r123): ([f64; 3], M3),
+    (q123, r36): ([f64; 3], M3),
     fit: Fit,
-    r06: &M3,
     free: &[f64; 6],
     out: &mut Candidates<6, 8>,
 ) {
-    let r = r123.transpose() * r06;
     let mut w = [([0.0; 3], Fit::Exact); 2];
-    let n = wrist.solve(&r, [free[3], free[5]], &mut w);
+    let n = wrist.solve(&r36, [free[3], free[5]], &mut w);
     for &(q456, f) in &w[..n] {
         let q = [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
         out.push(q, fit.and(f));
@@ -173,17 +171,31 @@ pub fn spherical_two_parallel(
     // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial offsets
     // in the distances, whose rounding would blur the elbow's double root.
     let elbow = Sp3::new(&flat(&h3, &p34), &flat(&h3, &(-p23)), &h3);
+    // h3 = σ h2 (the engine proved them parallel): R2 R3 = rot(h2, q2 + σ q3).
+    let s3 = h3.dot(&h2).signum();
     for q1 in t1.as_slice() {
         // R1 = rot(h1, q1); rot(−h1, q1) = R1ᵀ.
-        let r1 = q1.rot(&h1);
-        let v = r1.transpose() * p16 - p12;
+        let r1t = q1.rot(&h1).transpose();
+        let v = r1t * p16 - p12;
+        let r1t_r06 = r1t * r06;
         let t3 = elbow.solve(flat(&h3, &v).norm(), free[2]);
         for q3 in t3.as_slice() {
             let r3 = q3.rot(&h3);
             let (q2, f2) = sp1_angle(&(p23 + r3 * p34), &v, &h2, free[1]);
             let fit = t1.fit.and(t3.fit).and(f2);
-            let arm = ([q1.theta, q2.theta, q3.theta], r1 * q2.rot(&h2) * r3);
-            with_wrist(&wrist, arm, fit, &r06, free, &mut out);
+            let q23 = Angle {
+                theta: q2.theta + s3 * q3.theta,
+                sin: q2.sin * q3.cos + s3 * q2.cos * q3.sin,
+                cos: q2.cos * q3.cos - s3 * q2.sin * q3.sin,
+            };
+            let r36 = q23.rot(&h2).transpose() * r1t_r06;
+            with_wrist(
+                &wrist,
+                ([q1.theta, q2.theta, q3.theta], r36),
+                fit,
+                free,
+                &mut out,
+            );
         }
     }
     out
@@ -214,11 +226,9 @@ pub fn spherical_two_intersecting(
         let arm = p23 + r3 * p34;
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
         for (q1, q2) in &t12[..n] {
-            let arm = (
-                [q1.theta, q2.theta, q3.theta],
-                q1.rot(&h1) * q2.rot(&h2) * r3,
-            );
-            with_wrist(&wrist, arm, t3.fit.and(f12), &r06, free, &mut out);
+            let r123 = q1.rot(&h1) * q2.rot(&h2) * r3;
+            let arm = ([q1.theta, q2.theta, q3.theta], r123.transpose() * r06);
+            with_wrist(&wrist, arm, t3.fit.and(f12), free, &mut out);
         }
     }
     out
@@ -262,8 +272,9 @@ pub fn spherical_two_intersecting_prismatic(
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
         for (q1, q2) in &t12[..n] {
             // Joint 3 slides: it turns nothing.
-            let arm = ([q1.theta, q2.theta, q3], q1.rot(&h1) * q2.rot(&h2));
-            with_wrist(&wrist, arm, fit.and(f12), &r06, free, &mut out);
+            let r12 = q1.rot(&h1) * q2.rot(&h2);
+            let arm = ([q1.theta, q2.theta, q3], r12.transpose() * r06);
+            with_wrist(&wrist, arm, fit.and(f12), free, &mut out);
         }
     }
     out
