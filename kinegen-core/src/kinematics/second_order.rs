@@ -78,8 +78,8 @@ impl SecondOrder {
 /// once: in the world frame, in the model's middle frame (where the columns after it do
 /// not depend on the joints before it), or in one of the two link frames in the middle of
 /// the chain (each half of a 7-joint arm short: the Panda's 341 operations become 288).
-/// Each candidate is built in a scratch copy of the graph and counted; only the cheapest
-/// is built in the model's, so the others leave no nodes behind.
+/// Each candidate is built in a scratch copy of the graph and counted; the cheapest's copy
+/// becomes the model's graph, so the others leave no nodes behind.
 pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
     let qd = model.sym.rates(chain.dof());
     let cols = columns(&model.jacobian);
@@ -92,25 +92,28 @@ pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
     let jacobian_dot = from_columns(&jacobian_dot(g, &cols, &qd));
     let jacobian_ee_dot = from_columns(&jacobian_ee_dot(g, &ee, &qd));
     let n = chain.dof();
-    let mut candidates = vec![JdotFrame::World];
+    let mut others = Vec::new();
     if let Some(l) = model.local.clone().filter(|l| l.k > 0) {
-        candidates.push(JdotFrame::Pivot(l));
+        others.push(JdotFrame::Pivot(l));
     }
     if n >= 4 {
-        candidates.extend([n / 2 - 1, n / 2].map(JdotFrame::Link));
+        others.extend([n / 2 - 1, n / 2].map(JdotFrame::Link));
     }
-    let mut best: Option<(usize, usize)> = None;
-    for (i, c) in candidates.iter().enumerate() {
+    // Each candidate built in a scratch copy; the cheapest copy (ties to the earlier, the
+    // world frame first) becomes the model's graph: it is the model's graph with that
+    // candidate built in it, and nothing else.
+    let build = |c: &JdotFrame| {
         let mut scratch = model.sym.clone();
         let ids = c.build(chain, &mut scratch, &cols, &qd);
-        let ops = scratch.graph.op_count(&ids);
-        if best.is_none_or(|(b, _)| ops < b) {
-            best = Some((ops, i));
-        }
-    }
-    let chosen = &candidates[best.map_or(0, |(_, i)| i)];
-    let jdot_qdot = chosen.build(chain, &mut model.sym, &cols, &qd);
-    let jdot_qdot_frame = chosen.link();
+        (scratch.graph.op_count(&ids), scratch, ids, c.link())
+    };
+    let world = build(&JdotFrame::World);
+    let (_, sym, jdot_qdot, jdot_qdot_frame) =
+        others
+            .iter()
+            .map(build)
+            .fold(world, |best, c| if c.0 < best.0 { c } else { best });
+    model.sym = sym;
     // Normal forms dropped here are dropped by design (see MAX_TERMS): no note.
     let g = &mut model.sym.graph;
     (g.max_terms, g.nf_overflows) = saved;
