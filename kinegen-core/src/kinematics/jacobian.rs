@@ -97,13 +97,15 @@ pub fn columns_about(
     chain
         .kinds()
         .zip(axes)
-        .map(|(kind, &(z, o))| {
-            column(g, kind, z, zero, |g| {
-                let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
-                cross(g, z, r)
-            })
-        })
+        .map(|(kind, &(z, o))| column(g, kind, z, zero, |g| moment(g, z, o, p)))
         .collect()
+}
+
+/// `z × (p − o)`: the velocity of the point `p` for a unit rate about the axis through
+/// `o` along `z` (a revolute column's linear part).
+fn moment(g: &mut Graph, z: [Id; 3], o: [Id; 3], p: [Id; 3]) -> [Id; 3] {
+    let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
+    cross(g, z, r)
 }
 
 /// A joint's column from its axis `z`: `[lin; z]` for a revolute joint (`lin` made only
@@ -153,10 +155,7 @@ pub fn geometric(
             None => (sym.axes[i].0, sym.axes[i].1, sym.tool.p),
         };
         let g = &mut sym.graph;
-        let Column { mut lin, mut ang } = column(g, kind, z, zero, |g| {
-            let r = [g.sub(p[0], o[0]), g.sub(p[1], o[1]), g.sub(p[2], o[2])];
-            cross(g, z, r)
-        });
+        let Column { mut lin, mut ang } = column(g, kind, z, zero, |g| moment(g, z, o, p));
         if let Some(pv) = local {
             if let Some(lc) = local_columns.as_mut() {
                 lc.columns.push(Column { lin, ang });
