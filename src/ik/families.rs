@@ -336,7 +336,13 @@ pub fn three_parallel_two_intersecting(
                 let x = r5.transpose() * (r14.transpose() * target_h5);
                 sp1(&h5, &x, &h6, free[5])
             };
-            let (mode, ft, q6_turned) = match (k, turned) {
+            // θ known: R14 = rot(h2, θ), and with it q6 (given, or by SP1).
+            let theta_known = |t: Angle, q6: Option<(f64, Fit)>| {
+                let r14 = t.rot(&h2);
+                let q6 = q6.unwrap_or_else(|| q6_for(&r14));
+                Arm::Theta { t, r14, q6 }
+            };
+            let (mode, ft) = match (k, turned) {
                 // (θ + π, the other q5, q6 + π) solves the wrist like (θ, q5, q6).
                 (1, Some((t, ft, (q6, f6)))) => {
                     let t = Angle {
@@ -344,7 +350,7 @@ pub fn three_parallel_two_intersecting(
                         sin: -t.sin,
                         cos: -t.cos,
                     };
-                    (Arm::Theta(t), ft, Some((wrap(q6 + PI), f6)))
+                    (theta_known(t, Some((wrap(q6 + PI), f6))), ft)
                 }
                 _ => {
                     let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
@@ -352,12 +358,8 @@ pub fn three_parallel_two_intersecting(
                     // singularity q4 = free — or, when that q4 puts the wrist out of the
                     // elbow's reach, θ chosen mid-range of what the elbow can reach,
                     // nearest to free's.
-                    let mut mode = if ft == Fit::Free {
-                        Arm::Q4(free[3])
-                    } else {
-                        Arm::Theta(theta)
-                    };
-                    if let Arm::Q4(q4) = mode {
+                    let mode = if ft == Fit::Free {
+                        let q4 = free[3];
                         let known = p34 + rot(&h4, q4) * p45;
                         let t = sp3(
                             &flat(&h2, &known),
@@ -369,38 +371,38 @@ pub fn three_parallel_two_intersecting(
                         if t.fit == Fit::LeastSquares {
                             let hint = free[1] + s3 * free[2] + s4 * free[3];
                             let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
-                            mode = Arm::Theta(Angle::new(theta));
+                            theta_known(Angle::new(theta), None)
+                        } else {
+                            Arm::Q4(q4)
                         }
-                    }
-                    (mode, ft, None)
+                    } else {
+                        theta_known(theta, None)
+                    };
+                    (mode, ft)
                 }
             };
             let fit = t1.fit.and(t5.fit).and(ft);
-            let (reach, known, q6_known) = match mode {
-                Arm::Theta(t) => {
-                    let r14 = t.rot(&h2);
-                    let q6 = q6_turned.unwrap_or_else(|| q6_for(&r14));
-                    (arm - r14 * p45, p34, q6)
-                }
-                // θ, so q6, depends on the elbow: found per q3 below.
-                Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45, (0.0, Fit::Exact)),
-            };
-            if let (0, WristPair::HalfTurn, Arm::Theta(t)) = (k, pair, mode) {
+            if let (0, WristPair::HalfTurn, Arm::Theta { t, q6, .. }) = (k, pair, mode) {
                 // θ from the wrist (not the singular branch's choice).
                 if ft != Fit::Free {
-                    turned = Some((t, ft, q6_known));
+                    turned = Some((t, ft, q6));
                 }
             }
+            let (reach, known) = match mode {
+                Arm::Theta { r14, .. } => (arm - r14 * p45, p34),
+                // θ, so q6, depends on the elbow: found per q3 below.
+                Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45),
+            };
             // In the plane ⟂ h2 (the components along h2 agree by step 2).
             let d3 = flat(&h2, &reach).norm();
             let t3 = match mode {
-                Arm::Theta(_) => elbow.solve(d3, free[2]),
+                Arm::Theta { .. } => elbow.solve(d3, free[2]),
                 Arm::Q4(_) => sp3(&flat(&h2, &known), &flat(&h2, &(-p23)), &h3, d3, free[2]),
             };
             for q3 in t3.as_slice() {
                 let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &reach, &h2, free[1]);
                 let (q4, (q6, f6)) = match mode {
-                    Arm::Theta(t) => (wrap(s4 * (t.theta - q2 - s3 * q3.theta)), q6_known),
+                    Arm::Theta { t, q6, .. } => (wrap(s4 * (t.theta - q2 - s3 * q3.theta)), q6),
                     Arm::Q4(q4) => (q4, q6_for(&rot(&h2, q2 + s3 * q3.theta + s4 * q4))),
                 };
                 out.push(
@@ -416,8 +418,9 @@ pub fn three_parallel_two_intersecting(
 /// What fixes the UR arm's last parallel joint.
 #[derive(Clone, Copy)]
 enum Arm {
-    /// `θ = q2 ± q3 ± q4` is known.
-    Theta(Angle),
+    /// `θ = q2 ± q3 ± q4` is known, so are `R14 = rot(h2, θ)` and q6 (which does not
+    /// depend on the elbow then).
+    Theta { t: Angle, r14: M3, q6: (f64, Fit) },
     /// q4 is (the wrist singularity's free joint).
     Q4(f64),
 }
