@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use kinegen_core::emit::code::{Coder, OpCount};
 use kinegen_core::kinematics::model::Model;
-use kinegen_core::{Chain, Generated};
+use kinegen_core::{Chain, Generated, StageTimes};
 use serde_json::{json, Value};
 
 use crate::det_hook::Determinants;
@@ -23,6 +23,8 @@ pub struct Stats {
     pub second: Vec<(&'static str, OpCount)>,
     /// Wall time of `generate`, milliseconds.
     pub time_ms: f64,
+    /// Its stages (`Generated::times`).
+    pub stages: StageTimes,
 }
 
 /// Counts from the generated code itself (`Generated::stats`, the counts of the very
@@ -53,6 +55,7 @@ pub fn stats(
         det,
         second,
         time_ms,
+        stages: generated.times,
     }
 }
 
@@ -62,7 +65,8 @@ fn ops_json(o: &OpCount) -> Value {
 
 /// `{"fk": {…}, "jacobian": {…}, "det": {…} or null, "hessian": {…}, "jacobian_dot":
 /// {…}, "jdot_qdot": {…}, "jacobian_ee_dot": {…}, "det_gradient": {…} or null,
-/// "time_ms": …}`.
+/// "time_ms": …, "stages_ms": {"order": …, "det": …, "second_order": …, "ik": …, "emit":
+/// …, "ik_emit": …, "print": …}}` (`ik_emit` is the IK's share of `emit`).
 pub fn to_json(s: &Stats) -> Value {
     let mut v = json!({
         "fk": ops_json(&s.fk),
@@ -75,6 +79,14 @@ pub fn to_json(s: &Stats) -> Value {
         obj.insert((*name).into(), ops_json(o));
     }
     obj.insert("time_ms".into(), json!(s.time_ms));
+    let t = &s.stages;
+    obj.insert(
+        "stages_ms".into(),
+        json!({
+            "order": t.order_ms, "det": t.det_ms, "second_order": t.second_order_ms,
+            "ik": t.ik_ms, "emit": t.emit_ms, "ik_emit": t.ik_emit_ms, "print": t.print_ms,
+        }),
+    );
     v
 }
 
@@ -113,6 +125,19 @@ pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
     for (name, o) in &s.second {
         row_of(&mut out, 16, name, o);
     }
-    let _ = writeln!(out, "\nengine time: {:.1} ms", s.time_ms);
+    let t = &s.stages;
+    let _ = writeln!(
+        out,
+        "\nengine time: {:.1} ms (FK and Jacobians {:.1}, det {:.1}, second order {:.1}, \
+         IK {:.2}, emitting the code {:.1} of which the IK's {:.2}, printing {:.1})",
+        s.time_ms,
+        t.order_ms,
+        t.det_ms,
+        t.second_order_ms,
+        t.ik_ms,
+        t.emit_ms,
+        t.ik_emit_ms,
+        t.print_ms
+    );
     out
 }

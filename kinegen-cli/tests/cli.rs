@@ -416,6 +416,21 @@ fn stats_counts_are_the_generated_code_s() {
     assert!(v["fk"]["trig"].as_u64().unwrap() <= 6);
     assert!(v["det"].is_null() || v["det"]["total"].is_u64());
     assert!(v["time_ms"].as_f64().unwrap() > 0.0);
+    // The stages are disjoint laps inside the timed `generate`: each is positive (UR5 has
+    // every stage, IK included) and together they do not exceed the whole.
+    let stages = &v["stages_ms"];
+    let stage = |k: &str| {
+        stages[k]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{k}: {stages}"))
+    };
+    let parts = ["order", "det", "second_order", "ik", "emit", "print"];
+    for k in parts.iter().chain(&["ik_emit"]) {
+        assert!(stage(k) > 0.0, "{k}: {stages}");
+    }
+    let sum: f64 = parts.iter().map(|k| stage(k)).sum();
+    assert!(sum <= v["time_ms"].as_f64().unwrap(), "{stages} vs {v}");
+    assert!(stage("ik_emit") <= stage("emit"), "{stages}");
     let table = stdout(&["stats", "ur5"]);
     assert!(
         table.contains(&format!("fk            {:>2}", g.stats.fk.add)),

@@ -46,6 +46,7 @@ fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
         second,
         det_gradient: None,
         ik: Err("not derived in this test".into()),
+        times: Default::default(),
     };
     let v = eval::values(&chain, &derived, &dets, &q, None);
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/planar_rr.toml");

@@ -6,6 +6,8 @@
 //!       ─ emit::functions ─▶ Functions ─ emit::rust ─▶ tokens
 //! ```
 
+use std::time::Instant;
+
 use proc_macro2::TokenStream;
 
 use crate::chain::Chain;
@@ -32,6 +34,50 @@ pub struct Generated {
     pub notes: Vec<String>,
     /// Operation counts of the main outputs.
     pub stats: Stats,
+    /// Wall time of each stage.
+    pub times: StageTimes,
+}
+
+/// Wall time of each engine stage, in milliseconds: where the time a user waits for in
+/// `cargo build` goes (`kinegen stats` prints it).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// FK, frames and Jacobians: every candidate evaluation order simplified, the
+    /// cheapest kept.
+    pub order_ms: f64,
+    /// The factored determinant and its singular factors.
+    pub det_ms: f64,
+    /// Hessian, `J̇`, `J̇ q̇`, `J̇_ee` with their simplification, and the determinant's
+    /// gradient.
+    pub second_order_ms: f64,
+    /// The closed-form IK: family decided from the exact axes, geometry planned.
+    pub ik_ms: f64,
+    /// Every method's straight-line code and doc (`emit::functions`; 0 from [`derive`]).
+    pub emit_ms: f64,
+    /// Of `emit_ms`, the closed-form IK's items.
+    pub ik_emit_ms: f64,
+    /// Printing the item and lexing it into tokens (0 from [`derive`]).
+    pub print_ms: f64,
+}
+
+impl StageTimes {
+    /// All stages together.
+    pub fn total_ms(&self) -> f64 {
+        self.order_ms
+            + self.det_ms
+            + self.second_order_ms
+            + self.ik_ms
+            + self.emit_ms
+            + self.print_ms
+    }
+}
+
+/// Milliseconds since `t`, and restarts it.
+fn lap(t: &mut Instant) -> f64 {
+    let now = Instant::now();
+    let ms = (now - *t).as_secs_f64() * 1e3;
+    *t = now;
+    ms
 }
 
 impl Generated {
@@ -60,6 +106,8 @@ pub struct Derived {
     /// Closed-form IK (`Err`: why no family fits). An f32 robot's is solved in f64 at run
     /// time (see `emit::ik`).
     pub ik: Result<IkModel, String>,
+    /// Wall time of the symbolic stages (`emit_ms`, `print_ms` are 0).
+    pub times: StageTimes,
 }
 
 /// Generate the Rust item for a chain, within `options.budget` (its `time_ms` counts
@@ -76,6 +124,8 @@ pub struct Derived {
 /// ```
 pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
     let derived = derive(chain, options);
+    let mut times = derived.times;
+    let mut t = Instant::now();
     // What the type holds: each method's straight-line code and doc, the constants.
     let functions = functions(
         chain,
@@ -85,26 +135,34 @@ pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Genera
         &derived.det_gradient,
         &derived.ik,
     );
+    times.emit_ms = lap(&mut t);
+    times.ik_emit_ms = functions.ik_emit_ms;
     // Printed, and parsed into tokens.
     let tokens = item(chain, header, &functions);
+    times.print_ms = lap(&mut t);
     let mut notes = derived.model.notes;
     notes.extend(functions.notes);
     Generated {
         tokens,
         notes,
         stats: functions.stats,
+        times,
     }
 }
 
 /// The symbolic stages of [`generate`]: what the CLI shows and evaluates.
 pub fn derive(chain: &Chain, options: &Options) -> Derived {
     let deadline = Deadline::start(&options.budget);
+    let mut times = StageTimes::default();
+    let mut t = Instant::now();
     // FK, frames and Jacobians in each candidate evaluation order (middle frame), each
     // simplified — e-graph polish, fewest negations, every rewrite checked — and the
     // cheapest kept.
     let mut model = cheapest(chain, options, deadline);
+    times.order_ms = lap(&mut t);
     // The determinant of the square Jacobian, factored, in closed form.
     let det = square_rows(chain).map(|_| closed_form::determinant(chain, &mut model));
+    times.det_ms = lap(&mut t);
     // Second order on the simplified Jacobian's nodes: Hessian, J̇, J̇q̇, J̇_ee, with
     // signs moved for the fewest negations (checked); the determinant's gradient.
     let mut second = second_order(chain, &mut model);
@@ -113,13 +171,16 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
         Some(Ok(d)) => Some(det_gradient(&mut model, d, chain.dof())),
         _ => None,
     };
+    times.second_order_ms = lap(&mut t);
     // The IK family, decided exactly from the axes at q = 0, and its geometry.
     let ik = ik::model(chain, options.budget.max_terms());
+    times.ik_ms = lap(&mut t);
     Derived {
         model,
         det,
         second,
         det_gradient,
         ik,
+        times,
     }
 }

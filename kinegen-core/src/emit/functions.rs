@@ -57,6 +57,9 @@ pub struct Functions {
     pub float: &'static str,
     /// The `Check` impl closed-form IK needs, when there is an `ik`.
     pub check: Option<CheckImpl>,
+    /// Wall time of emitting the closed-form IK's items, milliseconds (for
+    /// `StageTimes::ik_emit_ms`).
+    pub ik_emit_ms: f64,
 }
 
 /// Which square Jacobian `jacobian_det` takes the determinant of.
@@ -105,6 +108,7 @@ pub fn functions(
         .items
         .iter()
         .any(|i| matches!(i, Item::Method(m) if m.name == "det_gradient"));
+    let ik_start = std::time::Instant::now();
     let check = match ik {
         Ok(m) => {
             let singular = match det {
@@ -129,6 +133,7 @@ pub fn functions(
         }
         Err(_) => None,
     };
+    let ik_emit_ms = ik_start.elapsed().as_secs_f64() * 1e3;
     let fields = chain
         .params
         .iter()
@@ -146,6 +151,7 @@ pub fn functions(
         notes: out.notes,
         float: coder.float(),
         check,
+        ik_emit_ms,
     }
 }
 
