@@ -1,4 +1,4 @@
-//! The compile-fail cases of `tests/ui` through the TOML front end: the same messages,
+//! The compile-fail cases of `kinegen-macro/tests/ui` through the TOML front end: the same messages,
 //! each with the line of the offending entry.
 
 use kinegen_core::front::toml_file::load_str;

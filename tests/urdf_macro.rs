@@ -1,8 +1,8 @@
 //! The macro's URDF form compiles, tracks its file, and takes the options.
 
 kinegen::kinematics! {
-    /// A one-joint arm from `tests/ui/data/arm.urdf`, its shoulder height named.
-    pub struct Arm = urdf("tests/ui/data/arm.urdf", base = "base", tip = "tool");
+    /// A one-joint arm from `kinegen-macro/tests/ui/data/arm.urdf`, its shoulder height named.
+    pub struct Arm = urdf("kinegen-macro/tests/ui/data/arm.urdf", base = "base", tip = "tool");
     params: { h: "shoulder.origin.z" },
     scalar: f32,
 }

@@ -1,7 +1,7 @@
 //! Bad `kinematics!` inputs fail to compile with a clear message under the offending
 //! entry; and the engine's notes are compiler warnings, pinned as errors under
 //! `#![deny(deprecated)]` in `notes_are_warnings.rs`. The expected output of each `tests/ui/*.rs` is pinned in its `.stderr`;
-//! regenerate with `TRYBUILD=overwrite cargo test --test compile_fail` and review
+//! regenerate with `TRYBUILD=overwrite cargo test -p kinegen-macro --test compile_fail` and review
 //! every changed file like code.
 
 use std::path::{Path, PathBuf};
@@ -14,11 +14,11 @@ fn ui() {
 }
 
 /// trybuild compiles the UI tests as a crate of its own under
-/// `<target>/tests/trybuild/kinegen`, so the file form's paths (relative to
+/// `<target>/tests/trybuild/kinegen-macro`, so the file form's paths (relative to
 /// `CARGO_MANIFEST_DIR`) resolve there: put `tests/ui/data` where they look for it.
 fn stage_data_files() {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let project = target_dir(manifest).join("tests/trybuild/kinegen");
+    let project = target_dir(manifest).join("tests/trybuild/kinegen-macro");
     let (from, to) = (
         manifest.join("tests/ui/data"),
         project.join("tests/ui/data"),
