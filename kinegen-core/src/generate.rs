@@ -52,11 +52,11 @@ pub struct StageTimes {
     pub second_order_ms: f64,
     /// The closed-form IK: family decided from the exact axes, geometry planned.
     pub ik_ms: f64,
-    /// Every method's straight-line code and doc (`emit::functions`; 0 from [`derive`]).
+    /// Every method's straight-line code and doc (`emit::functions`; 0 from [`derive()`]).
     pub emit_ms: f64,
     /// Of `emit_ms`, the closed-form IK's items.
     pub ik_emit_ms: f64,
-    /// Printing the item and lexing it into tokens (0 from [`derive`]).
+    /// Printing the item and lexing it into tokens (0 from [`derive()`]).
     pub print_ms: f64,
 }
 
