@@ -298,6 +298,16 @@ impl SymbolicChain {
 }
 
 impl SymbolicChain {
+    /// The chain seen from the world frame: its axes, link origins and tool point as
+    /// built (what [`SymbolicChain::in_frame`] gives for a link frame).
+    pub fn world_view(&self) -> FrameView {
+        FrameView {
+            axes: self.axes.clone(),
+            origins: self.frames.iter().map(|t| t.p).collect(),
+            tool: self.tool.p,
+        }
+    }
+
     /// The chain seen from link frame `k` (`frames[k]`, 0-based): the links after it
     /// replayed forwards from the identity, those up to it walked backwards. Every entry
     /// then depends only on the joints between the frame and the point or axis — small

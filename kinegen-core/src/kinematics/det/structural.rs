@@ -226,11 +226,7 @@ fn sparsest(
     let views: Vec<FrameView> = frames
         .iter()
         .map(|&f| match f {
-            Frame::World => FrameView {
-                axes: sym.axes.clone(),
-                origins: sym.frames.iter().map(|t| t.p).collect(),
-                tool: sym.tool.p,
-            },
+            Frame::World => sym.world_view(),
             Frame::Link(k) => sym.in_frame(k),
         })
         .collect();
