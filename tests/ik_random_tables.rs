@@ -1,6 +1,7 @@
 //! Closed-form IK on random tables of each family (fixed seeds): random lengths, joint
 //! offsets (some that do not fold), twists of either sign (the PUMA-like tables' parallel
-//! axes in the same or the opposite sense), standard DH tables with base and tool frames. The engine must
+//! axes in the same or the opposite sense), in standard and modified DH, with base and
+//! tool frames. The engine must
 //! classify each table into its family exactly, and the
 //! runtime solver (called as the CLI calls it, through `kinegen::ik::dispatch`) must pass
 //! IKFast's self-test against the independent numeric reference of `kinegen_core`: 20 %
@@ -77,8 +78,27 @@ fn frame(rng: &mut XorShift64, name: &str) -> String {
 /// `(type, a, alpha, d or theta)` per row, standard DH.
 type Row = (&'static str, f64, String, f64);
 
-fn table(rows: &[Row], rng: &mut XorShift64, frames: bool, task: Option<&str>) -> String {
-    let mut s = String::from("convention = \"standard\"\n");
+/// The DH convention a table is written in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Convention {
+    Standard,
+    /// Craig's: row i's `a`, `alpha` place axis i relative to axis i − 1, so a standard
+    /// table's row i − 1 gives them (the first row's are 0: the base frame), and the
+    /// standard last row's, which only move the tool, are left to the (random) tool frame.
+    Modified,
+}
+
+fn table(
+    rows: &[Row],
+    rng: &mut XorShift64,
+    frames: bool,
+    task: Option<&str>,
+    convention: Convention,
+) -> String {
+    let mut s = String::from(match convention {
+        Convention::Standard => "convention = \"standard\"\n",
+        Convention::Modified => "convention = \"modified\"\n",
+    });
     if let Some(t) = task {
         s.push_str(&format!("task = {t}\n"));
     }
@@ -86,12 +106,19 @@ fn table(rows: &[Row], rng: &mut XorShift64, frames: bool, task: Option<&str>) -
         s.push_str(&frame(rng, "base"));
         s.push_str(&frame(rng, "tool"));
     }
-    for (kind, a, alpha, d) in rows {
+    let links: Vec<(f64, &str)> = match convention {
+        Convention::Standard => rows.iter().map(|r| (r.1, r.2.as_str())).collect(),
+        Convention::Modified => core::iter::once((0.0, "0"))
+            .chain(rows.iter().map(|r| (r.1, r.2.as_str())))
+            .take(rows.len())
+            .collect(),
+    };
+    for (&(kind, _, _, d), &(a, alpha)) in rows.iter().zip(&links) {
         let off = offset(rng);
         s.push_str(&format!(
             "[[joints]]\ntype = \"{kind}\"\na = {a}\nalpha = \"{alpha}\"\n"
         ));
-        if *kind == "revolute" {
+        if kind == "revolute" {
             s.push_str(&format!("d = {d}\noffset = \"{off}\"\n"));
         } else {
             s.push_str(&format!("theta = \"{off}\"\noffset = {d}\n"));
@@ -104,7 +131,7 @@ fn table(rows: &[Row], rng: &mut XorShift64, frames: bool, task: Option<&str>) -
 /// 11 draws a table — h3 reversed — whose configuration at the elbow's double root
 /// (q3 = 0) with q5 3.4e-4 from the wrist singularity comes back with q3 = 5.6e-6, outside
 /// this test's 1e-7: two nearly singular steps compound. Not fixed yet.)
-fn ur_like(rng: &mut XorShift64) -> String {
+fn ur_like(rng: &mut XorShift64, convention: Convention) -> String {
     let rows: Vec<Row> = vec![
         ("revolute", len(rng), twist(rng).into(), len(rng)),
         ("revolute", len(rng), "0".into(), len(rng)),
@@ -118,16 +145,20 @@ fn ur_like(rng: &mut XorShift64) -> String {
             len(rng),
         ),
     ];
-    table(&rows, rng, true, None)
+    table(&rows, rng, true, None, convention)
 }
 
 /// PUMA-like: spherical wrist, h2 ∥ h3.
-fn puma_like(rng: &mut XorShift64) -> String {
-    puma_like_wrist(rng, twist)
+fn puma_like(rng: &mut XorShift64, convention: Convention) -> String {
+    puma_like_wrist(rng, twist, convention)
 }
 
 /// PUMA-like with the wrist's twists from `wrist`.
-fn puma_like_wrist(rng: &mut XorShift64, wrist: fn(&mut XorShift64) -> &'static str) -> String {
+fn puma_like_wrist(
+    rng: &mut XorShift64,
+    wrist: fn(&mut XorShift64) -> &'static str,
+    convention: Convention,
+) -> String {
     let rows: Vec<Row> = vec![
         ("revolute", len(rng), twist(rng).into(), len(rng)),
         ("revolute", len(rng), parallel_twist(rng).into(), len(rng)),
@@ -136,11 +167,11 @@ fn puma_like_wrist(rng: &mut XorShift64, wrist: fn(&mut XorShift64) -> &'static 
         ("revolute", 0.0, wrist(rng).into(), 0.0),
         ("revolute", len(rng), "0".into(), len(rng)),
     ];
-    table(&rows, rng, true, None)
+    table(&rows, rng, true, None, convention)
 }
 
 /// Spherical wrist, h1 ∩ h2 (joint 3 revolute, or prismatic: Stanford-like).
-fn shoulder_like(rng: &mut XorShift64, prismatic: bool) -> String {
+fn shoulder_like(rng: &mut XorShift64, prismatic: bool, convention: Convention) -> String {
     let third = if prismatic { "prismatic" } else { "revolute" };
     let rows: Vec<Row> = vec![
         ("revolute", 0.0, twist(rng).into(), len(rng)),
@@ -155,7 +186,7 @@ fn shoulder_like(rng: &mut XorShift64, prismatic: bool) -> String {
         ("revolute", 0.0, twist(rng).into(), 0.0),
         ("revolute", 0.0, "0".into(), len(rng)),
     ];
-    table(&rows, rng, true, None)
+    table(&rows, rng, true, None, convention)
 }
 
 /// Planar: three revolute joints about z, task x, y, rz.
@@ -163,7 +194,13 @@ fn planar_like(rng: &mut XorShift64) -> String {
     let rows: Vec<Row> = (0..3)
         .map(|_| ("revolute", len(rng), "0".to_string(), len(rng)))
         .collect();
-    table(&rows, rng, false, Some("[\"x\", \"y\", \"rz\"]"))
+    table(
+        &rows,
+        rng,
+        false,
+        Some("[\"x\", \"y\", \"rz\"]"),
+        Convention::Standard,
+    )
 }
 
 /// What the engine gives the CLI for a chain: the plan and the geometry as numbers.
@@ -365,38 +402,69 @@ macro_rules! family_test {
 family_test!(
     ur_like_tables,
     11,
-    ur_like,
+    |r: &mut XorShift64| ur_like(r, Convention::Standard),
     "three_parallel_two_intersecting",
     None
 );
 family_test!(
     puma_like_tables,
     22,
-    puma_like,
+    |r: &mut XorShift64| puma_like(r, Convention::Standard),
     "spherical_two_parallel",
     None
 );
 family_test!(
     intersecting_shoulder_tables,
     33,
-    |r: &mut XorShift64| shoulder_like(r, false),
+    |r: &mut XorShift64| shoulder_like(r, false, Convention::Standard),
     "spherical_two_intersecting",
     None
 );
 family_test!(
     stanford_like_tables,
     44,
-    |r: &mut XorShift64| shoulder_like(r, true),
+    |r: &mut XorShift64| shoulder_like(r, true, Convention::Standard),
     "spherical_two_intersecting_prismatic",
     None
 );
 family_test!(planar_tables, 55, planar_like, "planar", Some(&[0, 1, 5]));
 
+// The same families written in modified DH: the engine reads the axes from the chain,
+// whichever convention built it.
+family_test!(
+    ur_like_modified_tables,
+    12,
+    |r: &mut XorShift64| ur_like(r, Convention::Modified),
+    "three_parallel_two_intersecting",
+    None
+);
+family_test!(
+    puma_like_modified_tables,
+    23,
+    |r: &mut XorShift64| puma_like(r, Convention::Modified),
+    "spherical_two_parallel",
+    None
+);
+family_test!(
+    intersecting_shoulder_modified_tables,
+    34,
+    |r: &mut XorShift64| shoulder_like(r, false, Convention::Modified),
+    "spherical_two_intersecting",
+    None
+);
+family_test!(
+    stanford_like_modified_tables,
+    45,
+    |r: &mut XorShift64| shoulder_like(r, true, Convention::Modified),
+    "spherical_two_intersecting_prismatic",
+    None
+);
+
 #[test]
 fn general_wrist_tables() {
     let mut rng = XorShift64::new(66);
     for k in 0..TABLES {
-        let src = puma_like_wrist(&mut rng, general_twist);
+        let src = puma_like_wrist(&mut rng, general_twist, Convention::Standard);
         let (robot, _) = load_str(&src, &format!("table{k}.toml")).unwrap();
         let wrist = self_test(&robot, "spherical_two_parallel", &mut rng, None, false);
         assert_eq!(wrist, WristPair::Solve, "table {k}:\n{src}");
