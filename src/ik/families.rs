@@ -12,7 +12,7 @@
 
 use super::geometry::{closest_points, rot, Angle, Geometry, Pose, M3, V3};
 use super::solutions::Candidates;
-use super::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit, Sp3, Sp4};
+use super::subproblems::{half_turn, sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit, Sp3, Sp4};
 use core::f64::consts::PI;
 
 /// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
@@ -345,12 +345,7 @@ pub fn three_parallel_two_intersecting(
             let (mode, ft) = match (k, turned) {
                 // (θ + π, the other q5, q6 + π) solves the wrist like (θ, q5, q6).
                 (1, Some((t, ft, (q6, f6)))) => {
-                    let t = Angle {
-                        theta: wrap(t.theta + PI),
-                        sin: -t.sin,
-                        cos: -t.cos,
-                    };
-                    (theta_known(t, Some((wrap(q6 + PI), f6))), ft)
+                    (theta_known(half_turn(t), Some((wrap(q6 + PI), f6))), ft)
                 }
                 _ => {
                     let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
@@ -373,7 +368,7 @@ pub fn three_parallel_two_intersecting(
                             let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
                             theta_known(Angle::new(theta), None)
                         } else {
-                            Arm::Q4(q4)
+                            Arm::Q4 { q4, known }
                         }
                     } else {
                         theta_known(theta, None)
@@ -391,19 +386,19 @@ pub fn three_parallel_two_intersecting(
             let (reach, known) = match mode {
                 Arm::Theta { r14, .. } => (arm - r14 * p45, p34),
                 // θ, so q6, depends on the elbow: found per q3 below.
-                Arm::Q4(q4) => (arm, p34 + rot(&h4, q4) * p45),
+                Arm::Q4 { known, .. } => (arm, known),
             };
             // In the plane ⟂ h2 (the components along h2 agree by step 2).
             let d3 = flat(&h2, &reach).norm();
             let t3 = match mode {
                 Arm::Theta { .. } => elbow.solve(d3, free[2]),
-                Arm::Q4(_) => sp3(&flat(&h2, &known), &flat(&h2, &(-p23)), &h3, d3, free[2]),
+                Arm::Q4 { .. } => sp3(&flat(&h2, &known), &flat(&h2, &(-p23)), &h3, d3, free[2]),
             };
             for q3 in t3.as_slice() {
                 let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &reach, &h2, free[1]);
                 let (q4, (q6, f6)) = match mode {
                     Arm::Theta { t, q6, .. } => (wrap(s4 * (t.theta - q2 - s3 * q3.theta)), q6),
-                    Arm::Q4(q4) => (q4, q6_for(&rot(&h2, q2 + s3 * q3.theta + s4 * q4))),
+                    Arm::Q4 { q4, .. } => (q4, q6_for(&rot(&h2, q2 + s3 * q3.theta + s4 * q4))),
                 };
                 out.push(
                     [q1.theta, q2, q3.theta, q4, q5.theta, q6],
@@ -421,8 +416,9 @@ enum Arm {
     /// `θ = q2 ± q3 ± q4` is known, so are `R14 = rot(h2, θ)` and q6 (which does not
     /// depend on the elbow then).
     Theta { t: Angle, r14: M3, q6: (f64, Fit) },
-    /// q4 is (the wrist singularity's free joint).
-    Q4(f64),
+    /// q4 is (the wrist singularity's free joint), so is the wrist centre's offset from
+    /// joint 3, `known = p34 + rot(h4, q4) p45`.
+    Q4 { q4: f64, known: V3 },
 }
 
 /// At the UR wrist singularity: the `θ` nearest to `hint` that puts the wrist centre in

@@ -184,11 +184,7 @@ fn cos_equation(
         };
         let angle = match phi {
             Some(phi) if sign > 0.0 => phi,
-            Some(phi) => Angle {
-                theta: wrap(phi.theta + core::f64::consts::PI),
-                sin: -phi.sin,
-                cos: -phi.cos,
-            },
+            Some(phi) => half_turn(phi),
             None => Angle::atan2(sign * sa, sign * ca),
         };
         return Roots::one(angle, fit);
@@ -391,6 +387,16 @@ fn mild(f: Fit) -> Fit {
     match f {
         Fit::LeastSquares => Fit::Exact,
         f => f,
+    }
+}
+
+/// `θ + π`, wrapped into `(−π, π]`, with its sine and cosine (those of `θ`, negated).
+#[inline]
+pub fn half_turn(a: Angle) -> Angle {
+    Angle {
+        theta: wrap(a.theta + core::f64::consts::PI),
+        sin: -a.sin,
+        cos: -a.cos,
     }
 }
 
