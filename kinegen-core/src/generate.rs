@@ -60,18 +60,6 @@ pub struct StageTimes {
     pub print_ms: f64,
 }
 
-impl StageTimes {
-    /// All stages together.
-    pub fn total_ms(&self) -> f64 {
-        self.order_ms
-            + self.det_ms
-            + self.second_order_ms
-            + self.ik_ms
-            + self.emit_ms
-            + self.print_ms
-    }
-}
-
 /// Milliseconds since `t`, and restarts it.
 fn lap(t: &mut Instant) -> f64 {
     let now = Instant::now();
