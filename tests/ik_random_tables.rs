@@ -397,68 +397,51 @@ macro_rules! family_test {
             }
         }
     };
+    // A 6-axis family in both conventions: the engine reads the axes from the chain,
+    // whichever convention built it. `$make(rng, convention)` writes one table.
+    ($standard:ident / $modified:ident, $seed:expr, $make:expr, $solver:expr) => {
+        family_test!(
+            $standard,
+            $seed,
+            |r: &mut XorShift64| $make(r, Convention::Standard),
+            $solver,
+            None
+        );
+        family_test!(
+            $modified,
+            $seed + 1,
+            |r: &mut XorShift64| $make(r, Convention::Modified),
+            $solver,
+            None
+        );
+    };
 }
 
 family_test!(
-    ur_like_tables,
+    ur_like_tables / ur_like_modified_tables,
     11,
-    |r: &mut XorShift64| ur_like(r, Convention::Standard),
-    "three_parallel_two_intersecting",
-    None
+    ur_like,
+    "three_parallel_two_intersecting"
 );
 family_test!(
-    puma_like_tables,
+    puma_like_tables / puma_like_modified_tables,
     22,
-    |r: &mut XorShift64| puma_like(r, Convention::Standard),
-    "spherical_two_parallel",
-    None
+    puma_like,
+    "spherical_two_parallel"
 );
 family_test!(
-    intersecting_shoulder_tables,
+    intersecting_shoulder_tables / intersecting_shoulder_modified_tables,
     33,
-    |r: &mut XorShift64| shoulder_like(r, false, Convention::Standard),
-    "spherical_two_intersecting",
-    None
+    |r, c| shoulder_like(r, false, c),
+    "spherical_two_intersecting"
 );
 family_test!(
-    stanford_like_tables,
+    stanford_like_tables / stanford_like_modified_tables,
     44,
-    |r: &mut XorShift64| shoulder_like(r, true, Convention::Standard),
-    "spherical_two_intersecting_prismatic",
-    None
+    |r, c| shoulder_like(r, true, c),
+    "spherical_two_intersecting_prismatic"
 );
 family_test!(planar_tables, 55, planar_like, "planar", Some(&[0, 1, 5]));
-
-// The same families written in modified DH: the engine reads the axes from the chain,
-// whichever convention built it.
-family_test!(
-    ur_like_modified_tables,
-    12,
-    |r: &mut XorShift64| ur_like(r, Convention::Modified),
-    "three_parallel_two_intersecting",
-    None
-);
-family_test!(
-    puma_like_modified_tables,
-    23,
-    |r: &mut XorShift64| puma_like(r, Convention::Modified),
-    "spherical_two_parallel",
-    None
-);
-family_test!(
-    intersecting_shoulder_modified_tables,
-    34,
-    |r: &mut XorShift64| shoulder_like(r, false, Convention::Modified),
-    "spherical_two_intersecting",
-    None
-);
-family_test!(
-    stanford_like_modified_tables,
-    45,
-    |r: &mut XorShift64| shoulder_like(r, true, Convention::Modified),
-    "spherical_two_intersecting_prismatic",
-    None
-);
 
 #[test]
 fn general_wrist_tables() {
