@@ -54,10 +54,12 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// One straight-line path for every lane: the first round of fdlibm's reduction (the one
 /// [`sin_cos`] does), its kernels, the quadrant picked with bit masks, and for each lane
 /// whether that was enough. A single branch, taken when *any* lane is tiny
-/// (|x| < 2⁻²⁷·√2), huge (|x| ≥ 2²⁰·π/2), ±∞, NaN, or one fdlibm reduces a second time
-/// (|x − n·π/2| < 2⁻¹⁶ of |x| rounded down to a power of 2: near a multiple of π/2, or
-/// any |x| beyond about 2¹⁶·π/4 ≈ 5·10⁴), sends all lanes through [`sin_cos`] one by
-/// one. For uniform angles in [−2π, 2π] a lane needs that one time in 2·10⁴, a call of
+/// (|x| < 2⁻²⁷·√2, so also exactly 0), huge (|x| ≥ 2²⁰·π/2), ±∞, NaN, or one fdlibm
+/// reduces a second time (|x − n·π/2| < 2⁻¹⁶ of |x| rounded down to a power of 2: near a
+/// multiple of π/2, or any |x| beyond about 2¹⁶·π/4 ≈ 5·10⁴), sends those lanes, and only
+/// those, through [`sin_cos`]. (Joints at exactly 0 or ±π/2 are common — home poses,
+/// snapped configurations, the stretched arm an unreachable IK pose gives — and taking
+/// every lane through [`sin_cos`] for one of them cost a UR5 `fk` about 500 instructions.) For uniform angles in [−2π, 2π] a lane needs that one time in 2·10⁴, a call of
 /// six lanes one time in 4000. Generated f64 code calls this once per function with all
 /// its joint angles.
 ///
@@ -82,69 +84,78 @@ pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(not(all(target_arch = "x86", not(target_feature = "sse2"))))]
     {
         let (mut s, mut c) = ([0.0; N], [0.0; N]);
-        // `&`, not `&&` or `if`: no branch per lane.
-        let mut fast = true;
+        // `|`, not `if`: no branch per lane. Bit `min(i, 63)`: lane i needs `sin_cos`.
+        let mut slow = 0u64;
         // Lanes in pairs, the last one twice if N is odd. A loop over pairs stays a loop
         // (not unrolled), so the first four pairs are spelled out: constant indices, the
         // ones past N fold away. (A closure here was not inlined.)
-        fast &= sin_cos_pair(&x, &mut s, &mut c, 0);
-        fast &= sin_cos_pair(&x, &mut s, &mut c, 2);
-        fast &= sin_cos_pair(&x, &mut s, &mut c, 4);
-        fast &= sin_cos_pair(&x, &mut s, &mut c, 6);
+        slow |= sin_cos_pair(&x, &mut s, &mut c, 0);
+        slow |= sin_cos_pair(&x, &mut s, &mut c, 2);
+        slow |= sin_cos_pair(&x, &mut s, &mut c, 4);
+        slow |= sin_cos_pair(&x, &mut s, &mut c, 6);
         for i in (8..N).step_by(2) {
-            fast &= sin_cos_pair(&x, &mut s, &mut c, i);
+            slow |= sin_cos_pair(&x, &mut s, &mut c, i);
         }
-        if !fast {
-            return sin_cos_each(x);
+        if slow != 0 {
+            sin_cos_lanes(&x, &mut s, &mut c, slow);
         }
         (s, c)
     }
 }
 
 /// Lanes `i` and `i + 1` of [`sin_cos_n`]'s fast path (lane `i` twice if it is the last
-/// one, nothing if `i ≥ N`), and whether the fast path holds for them.
+/// one, nothing if `i ≥ N`), and the lanes it does not hold for: bit `min(lane, 63)`.
 #[cfg(not(all(target_arch = "x86", not(target_feature = "sse2"))))]
 #[inline(always)]
-fn sin_cos_pair<const N: usize>(
-    x: &[f64; N],
-    s: &mut [f64; N],
-    c: &mut [f64; N],
-    i: usize,
-) -> bool {
+fn sin_cos_pair<const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N], i: usize) -> u64 {
     if i >= N {
-        return true;
+        return 0;
     }
     let j = if i + 1 < N { i + 1 } else { i };
     #[cfg(target_arch = "x86_64")]
-    let (sp, cp, fast) = fdlibm::sse2::sin_cos_2([x[i], x[j]]);
+    let (sp, cp, slow) = fdlibm::sse2::sin_cos_2([x[i], x[j]]);
     #[cfg(not(target_arch = "x86_64"))]
-    let (sp, cp, fast) = sin_cos_2_portable([x[i], x[j]]);
+    let (sp, cp, slow) = sin_cos_2_portable([x[i], x[j]]);
     (s[i], c[i], s[j], c[j]) = (sp[0], cp[0], sp[1], cp[1]);
-    fast
+    let slow = slow as u64;
+    ((slow & 1) << i.min(63)) | ((slow >> 1) << j.min(63))
 }
 
 /// Two lanes of [`sin_cos_n`]'s fast path in plain Rust: each lane the fast path of
-/// [`sin_cos`], and whether it holds for both. (On x86_64 LLVM's SLP vectoriser packed
+/// [`sin_cos`], and the lanes it does not hold for (bit 0: lane 0, bit 1: lane 1). (On x86_64 LLVM's SLP vectoriser packed
 /// this into SSE2 registers well for N = 6 angles alone, but inside a generated Jacobian
 /// it paired the lanes differently and the UR5 Jacobian became slower than with scalar
 /// calls; hence the intrinsics there.)
 #[cfg(not(all(target_arch = "x86", not(target_feature = "sse2"))))]
 #[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
 #[inline(always)]
-fn sin_cos_2_portable(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
-    let (mut s, mut c, mut fast) = ([0.0; 2], [0.0; 2], true);
+fn sin_cos_2_portable(x: [f64; 2]) -> ([f64; 2], [f64; 2], u32) {
+    let (mut s, mut c, mut slow) = ([0.0; 2], [0.0; 2], 0);
     for k in 0..2 {
         let (n, y0, y1, exact) = fdlibm::rem_pio2_first(x[k]);
-        fast &= exact;
+        slow |= (!exact as u32) << k;
         (s[k], c[k]) = fdlibm::quadrant(n, fdlibm::k_sin(y0, y1), fdlibm::k_cos(y0, y1));
     }
-    (s, c, fast)
+    (s, c, slow)
 }
 
-/// [`sin_cos`] lane by lane: the rare path of [`sin_cos_n`], out of line so the inlined
-/// fast path stays small.
+/// The lanes of [`sin_cos_n`] its fast path does not hold for (bit `min(i, 63)` of
+/// `slow`: lane i, all lanes from 63 on for bit 63) through [`sin_cos`]: the rare path,
+/// out of line so the inlined fast path stays small.
+#[cfg(not(all(target_arch = "x86", not(target_feature = "sse2"))))]
 #[cold]
 #[inline(never)]
+fn sin_cos_lanes<const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N], slow: u64) {
+    for i in 0..N {
+        if slow & (1 << i.min(63)) != 0 {
+            (s[i], c[i]) = sin_cos(x[i]);
+        }
+    }
+}
+
+/// [`sin_cos`] lane by lane: [`sin_cos_n`] on x86 without SSE2 (x87's excess precision
+/// breaks the fast path's rounding trick).
+#[cfg(all(target_arch = "x86", not(target_feature = "sse2")))]
 fn sin_cos_each<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let (mut s, mut c) = ([0.0; N], [0.0; N]);
     for i in 0..N {
@@ -285,7 +296,7 @@ mod fdlibm {
         use core::arch::x86_64::*;
 
         #[inline(always)]
-        pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
+        pub fn sin_cos_2(x: [f64; 2]) -> ([f64; 2], [f64; 2], u32) {
             // SAFETY: SSE2 is part of the x86_64 baseline; the pointers are those of
             // local arrays of two f64.
             unsafe {
@@ -306,7 +317,7 @@ mod fdlibm {
                     _mm_and_pd(_mm_cmpge_pd(ax, k(FAST_MIN)), _mm_cmplt_pd(ax, k(FAST_END))),
                     _mm_cmpge_pd(_mm_and_pd(y0, bits(ABS)), _mm_mul_pd(power, k(CANCEL))),
                 );
-                let fast = _mm_movemask_pd(exact) == 0b11;
+                let slow = !_mm_movemask_pd(exact) as u32 & 0b11;
                 // k_sin(y0, y1)
                 let z = _mm_mul_pd(y0, y0);
                 let w = _mm_mul_pd(z, z);
@@ -360,7 +371,7 @@ mod fdlibm {
                 let (mut so, mut co) = ([0.0; 2], [0.0; 2]);
                 _mm_storeu_pd(so.as_mut_ptr(), _mm_castsi128_pd(_mm_xor_si128(a, sign_a)));
                 _mm_storeu_pd(co.as_mut_ptr(), _mm_castsi128_pd(_mm_xor_si128(b, sign_b)));
-                (so, co, fast)
+                (so, co, slow)
             }
         }
     }
@@ -656,15 +667,13 @@ mod tests {
         let mut fast_pairs = 0;
         for p in xs.chunks_exact(2) {
             let x = [p[0], p[1]];
-            let (s, c, fast) = super::fdlibm::sse2::sin_cos_2(x);
-            let (ps, pc, pfast) = super::sin_cos_2_portable(x);
-            assert_eq!(fast, pfast, "{x:?}");
-            fast_pairs += fast as usize;
-            if fast {
-                for k in 0..2 {
-                    assert!(same(s[k], ps[k]) && same(c[k], pc[k]), "{x:?} lane {k}");
-                    assert_eq!((s[k], c[k]), super::sin_cos(x[k]), "{x:?} lane {k}");
-                }
+            let (s, c, slow) = super::fdlibm::sse2::sin_cos_2(x);
+            let (ps, pc, pslow) = super::sin_cos_2_portable(x);
+            assert_eq!(slow, pslow, "{x:?}");
+            fast_pairs += (slow == 0) as usize;
+            for k in (0..2).filter(|k| slow & (1 << k) == 0) {
+                assert!(same(s[k], ps[k]) && same(c[k], pc[k]), "{x:?} lane {k}");
+                assert_eq!((s[k], c[k]), super::sin_cos(x[k]), "{x:?} lane {k}");
             }
         }
         // The flag is not trivially false. Arguments of scale 7 and 1e3 are fast, those of

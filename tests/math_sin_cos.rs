@@ -416,8 +416,8 @@ fn batched_thresholds_of_the_fast_path() {
 
 #[test]
 fn batched_special_lanes_are_scalar_sin_cos_exactly() {
-    // A tiny, huge or non-finite lane sends every lane of the call through `sin_cos`:
-    // bit for bit the scalar results, signed zeros and NaN included.
+    // A tiny, huge or non-finite lane goes through `sin_cos`, the others keep the fast
+    // path: every lane bit for bit the scalar result, signed zeros and NaN included.
     let specials = [
         0.0,
         -0.0,
@@ -455,4 +455,28 @@ fn batched_special_lanes_are_scalar_sin_cos_exactly() {
     assert!(s[0].is_nan() && c[0].is_nan() && s[2].is_nan() && c[2].is_nan());
     assert_eq!((s[1], c[1]), sin_cos(1.0));
     assert_eq!(sin_cos_n::<0>([]), ([], []));
+}
+
+#[test]
+fn batched_lanes_past_64_share_one_flag_and_stay_exact() {
+    // Lanes from 63 on share the last bit of the slow-lane mask: a special lane there
+    // sends all of them through `sin_cos`, which gives the fast path's bits anyway.
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+    for special in [0.0, FRAC_PI_2, f64::NAN, 1e22] {
+        for lane in [0, 10, 62, 63, 64, 69] {
+            let mut x = [0.0; 70];
+            for (i, v) in x.iter_mut().enumerate() {
+                *v = 0.37 * i as f64 - 11.0;
+            }
+            x[lane] = special;
+            let (s, c) = sin_cos_n(x);
+            for i in 0..70 {
+                let (ss, sc) = sin_cos(x[i]);
+                assert!(
+                    same(s[i], ss) && same(c[i], sc),
+                    "lane {i}, special at {lane}"
+                );
+            }
+        }
+    }
 }
