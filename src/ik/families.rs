@@ -10,9 +10,12 @@
 //! Joint numbers in the docs are 1-based, as in the robot's tables; `h`, `p` indices are
 //! 0-based.
 
-use super::geometry::{closest_points, rot, Angle, Geometry, Pose, M3, V3};
+use super::geometry::{closest_points, rot, Angle, Geometry, Orbit, Pose, M3, V3};
 use super::solutions::Candidates;
-use super::subproblems::{half_turn, sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit, Sp3, Sp4};
+use super::subproblems::{
+    half_turn, sp1, sp1_angle, sp1_planar, sp1_planar_angle, sp2, sp3, sp4, wrap, Fit, Plane, Sp3,
+    Sp4,
+};
 use core::f64::consts::PI;
 
 /// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
@@ -71,6 +74,9 @@ struct Wrist {
     h: [V3; 3],
     q5: Sp4,
     pair: WristPair,
+    /// `R5 h6` and `R5ᵀ h4`: h6's and h4's orbits about h5.
+    h6_about_h5: Orbit,
+    h4_about_h5: Orbit,
 }
 
 impl Wrist {
@@ -78,24 +84,35 @@ impl Wrist {
         let h = [g.h[3], g.h[4], g.h[5]];
         // h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.
         let q5 = Sp4::new(&h[0], &h[2], &h[1]);
-        Wrist { h, q5, pair }
+        Wrist {
+            h,
+            q5,
+            pair,
+            h6_about_h5: Orbit::new(&h[1], &h[2]),
+            h4_about_h5: Orbit::new(&h[1], &h[0]),
+        }
     }
 
-    /// `(q4, q5, q6)` with `R4 R5 R6 = r36`: SP4 for q5, SP1 for q4 and q6; at
-    /// `h4 ∥ R5 h6` (q5 at its singular value) q4 is free and q6 is taken from the whole
-    /// rotation. With [`WristPair::HalfTurn`] the second root of q5 takes `(q4 + π,
-    /// q6 + π)` from the first.
-    fn solve(&self, r36: &M3, free: [f64; 2], out: &mut [([f64; 3], Fit); 2]) -> usize {
+    /// `(q4, q5, q6)` with `R4 R5 R6 = R36`, from what the wrist needs of `R36`:
+    /// `target = (R36 h6, R36ᵀ h4)`; the whole `r36()` only at `h4 ∥ R5 h6`. SP4 for
+    /// q5, SP1 for q4 and q6; at `h4 ∥ R5 h6` (q5 at its singular value) q4 is free and q6
+    /// is taken from the whole rotation. With [`WristPair::HalfTurn`] the second root of
+    /// q5 takes `(q4 + π, q6 + π)` from the first.
+    fn solve(
+        &self,
+        (r36_h6, r36t_h4): (V3, V3),
+        r36: impl Fn() -> M3,
+        free: [f64; 2],
+        out: &mut [([f64; 3], Fit); 2],
+    ) -> usize {
         let [h4, h5, h6] = &self.h;
-        let (r36_h6, r36t_h4) = (r36 * h6, r36.transpose() * h4);
         let t5 = self.q5.solve(h4.dot(&r36_h6), 0.0);
         if self.pair == WristPair::HalfTurn && t5.n == 2 {
             let q5 = t5.angles[0];
-            let r5 = q5.rot(h5);
-            let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
+            let (q4, f4) = sp1(&self.h6_about_h5.at(&q5), &r36_h6, h4, free[0]);
             // Two distinct roots: h4 ∦ R5 h6, so q4 is not free.
             if f4 != Fit::Free {
-                let (q6, f6) = sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1]);
+                let (q6, f6) = sp1(&r36t_h4, &self.h4_about_h5.back(&q5), h6, free[1]);
                 let fit = t5.fit.and(f4).and(f6);
                 out[0] = ([q4, q5.theta, q6], fit);
                 out[1] = ([wrap(q4 + PI), t5.angles[1].theta, wrap(q6 + PI)], fit);
@@ -103,34 +120,40 @@ impl Wrist {
             }
         }
         for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
-            let r5 = q5.rot(h5);
-            let (q4, f4) = sp1(&(r5 * h6), &r36_h6, h4, free[0]);
+            let (q4, f4) = sp1(&self.h6_about_h5.at(q5), &r36_h6, h4, free[0]);
             let (q6, f6) = if f4 == Fit::Free {
-                // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ r36.
-                let m = (rot(h4, q4) * r5).transpose() * r36;
+                // Only q4 ± q6 is determined: q4 = free, q6 from R6 = (R4 R5)ᵀ R36.
+                let m = (rot(h4, q4) * q5.rot(h5)).transpose() * r36();
                 let x = orthogonal(h6);
                 sp1(&x, &(m * x), h6, free[1])
             } else {
                 // R6 (R36ᵀ h4) = R5ᵀ h4, since R36ᵀ h4 = R6ᵀ R5ᵀ h4.
-                sp1(&r36t_h4, &(r5.transpose() * h4), h6, free[1])
+                sp1(&r36t_h4, &self.h4_about_h5.back(q5), h6, free[1])
             };
             *o = ([q4, q5.theta, q6], t5.fit.and(f4).and(f6));
         }
         t5.n
     }
+
+    /// What [`Wrist::solve`] needs of the rotation `r36`.
+    fn target(&self, r36: &M3) -> (V3, V3) {
+        (r36 * self.h[2], r36.transpose() * self.h[0])
+    }
 }
 
-/// Adds the wrist solutions for the arm joints `q123` to `out`; `r36 = (R1 R2 R3)ᵀ R06` is
-/// the rotation the wrist must make (a prismatic joint turns nothing).
+/// Adds the wrist solutions for the arm joints `q123` to `out`; `R36 = (R1 R2 R3)ᵀ R06` is
+/// the rotation the wrist must make (a prismatic joint turns nothing), given as
+/// `target = (R36 h6, R36ᵀ h4)` and, for a wrist singularity, `r36()`.
 fn with_wrist(
     wrist: &Wrist,
-    (q123, r36): ([f64; 3], M3),
+    q123: [f64; 3],
+    (target, r36): ((V3, V3), impl Fn() -> M3),
     fit: Fit,
     free: &[f64; 6],
     out: &mut Candidates<6, 8>,
 ) {
     let mut w = [([0.0; 3], Fit::Exact); 2];
-    let n = wrist.solve(&r36, [free[3], free[5]], &mut w);
+    let n = wrist.solve(target, r36, [free[3], free[5]], &mut w);
     for &(q456, f) in &w[..n] {
         let q = [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
         out.push(q, fit.and(f));
@@ -168,34 +191,38 @@ pub fn spherical_two_parallel(
     let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
     let p16 = w - g.p[0];
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), free[0]);
-    // In the plane ⟂ h2 ∥ h3 (the components along it agree by step 2): no axial offsets
+    // In the plane ⟂ h2 (the components along it agree by step 2): no axial offsets
     // in the distances, whose rounding would blur the elbow's double root.
     let elbow = Sp3::new(&flat(&h3, &p34), &flat(&h3, &(-p23)), &h3);
-    // h3 = σ h2 (the engine proved them parallel): R2 R3 = rot(h2, q2 + σ q3).
+    // h3 = σ h2 (the engine proved them parallel): R2 R3 = rot(h2, q2 + σ q3), a 2-D
+    // rotation in the plane ⟂ h2.
     let s3 = h3.dot(&h2).signum();
+    let plane = Plane::new(&h2);
+    let (p23_, p34_) = (plane.split(&p23), plane.split(&p34));
+    // The wrist needs R36 h6 = R23ᵀ (R1ᵀ R06 h6) and R36ᵀ h4 = (R06ᵀ R1) (R23 h4).
+    let (h4, h6) = (wrist.h[0], wrist.h[2]);
+    let (r06_h6, h4_) = (r06 * h6, plane.split(&h4));
     for q1 in t1.as_slice() {
         // R1 = rot(h1, q1); rot(−h1, q1) = R1ᵀ.
-        let r1t = q1.rot(&h1).transpose();
-        let v = r1t * p16 - p12;
-        let r1t_r06 = r1t * r06;
-        let t3 = elbow.solve(flat(&h3, &v).norm(), free[2]);
+        let r1 = q1.rot(&h1);
+        let v = plane.split(&(r1.tr_mul(&p16) - p12));
+        let r1t_r06_h6 = plane.split(&r1.tr_mul(&r06_h6));
+        let t3 = elbow.solve(v.flat_norm(), free[2]);
         for q3 in t3.as_slice() {
-            let r3 = q3.rot(&h3);
-            let (q2, f2) = sp1_angle(&(p23 + r3 * p34), &v, &h2, free[1]);
+            let (q2, f2) = sp1_planar_angle(&(p23_ + p34_.turn(q3, s3)), &v, free[1]);
             let fit = t1.fit.and(t3.fit).and(f2);
             let q23 = Angle {
                 theta: q2.theta + s3 * q3.theta,
                 sin: q2.sin * q3.cos + s3 * q2.cos * q3.sin,
                 cos: q2.cos * q3.cos - s3 * q2.sin * q3.sin,
             };
-            let r36 = q23.rot(&h2).transpose() * r1t_r06;
-            with_wrist(
-                &wrist,
-                ([q1.theta, q2.theta, q3.theta], r36),
-                fit,
-                free,
-                &mut out,
+            let target = (
+                plane.join(&r1t_r06_h6.turn(&q23, -1.0)),
+                r06.tr_mul(&(r1 * plane.join(&h4_.turn(&q23, 1.0)))),
             );
+            let r36 = || (r1 * q23.rot(&h2)).tr_mul(&r06);
+            let q123 = [q1.theta, q2.theta, q3.theta];
+            with_wrist(&wrist, q123, (target, r36), fit, free, &mut out);
         }
     }
     out
@@ -226,9 +253,10 @@ pub fn spherical_two_intersecting(
         let arm = p23 + r3 * p34;
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
         for (q1, q2) in &t12[..n] {
-            let r123 = q1.rot(&h1) * q2.rot(&h2) * r3;
-            let arm = ([q1.theta, q2.theta, q3.theta], r123.transpose() * r06);
-            with_wrist(&wrist, arm, t3.fit.and(f12), free, &mut out);
+            let r36 = (q1.rot(&h1) * q2.rot(&h2) * r3).transpose() * r06;
+            let q123 = [q1.theta, q2.theta, q3.theta];
+            let wrist_of = (wrist.target(&r36), || r36);
+            with_wrist(&wrist, q123, wrist_of, t3.fit.and(f12), free, &mut out);
         }
     }
     out
@@ -272,9 +300,10 @@ pub fn spherical_two_intersecting_prismatic(
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
         for (q1, q2) in &t12[..n] {
             // Joint 3 slides: it turns nothing.
-            let r12 = q1.rot(&h1) * q2.rot(&h2);
-            let arm = ([q1.theta, q2.theta, q3], r12.transpose() * r06);
-            with_wrist(&wrist, arm, fit.and(f12), free, &mut out);
+            let r36 = (q1.rot(&h1) * q2.rot(&h2)).transpose() * r06;
+            let q123 = [q1.theta, q2.theta, q3];
+            let wrist_of = (wrist.target(&r36), || r36);
+            with_wrist(&wrist, q123, wrist_of, fit.and(f12), free, &mut out);
         }
     }
     out
@@ -320,34 +349,44 @@ pub fn three_parallel_two_intersecting(
     let wrist5 = Sp4::new(&h2, &h6, &h5);
     let (r06_h5, r06_h6) = (r06 * h5, r06 * h6);
     let elbow = Sp3::new(&flat(&h2, &p34), &flat(&h2, &(-p23)), &h3);
+    // The arm's plane ⟂ h2: turns about h2 ∥ h3 ∥ h4 are 2-D rotations there.
+    let plane = Plane::new(&h2);
+    let (p23_, p34_, p45_) = (plane.split(&p23), plane.split(&p34), plane.split(&p45));
     for q1 in t1.as_slice() {
         let r1t = q1.rot(&h1).transpose();
         // R1ᵀ R06 h5, R1ᵀ R06 h6: all the wrist needs of the target's rotation.
         let (target_h5, target_h6) = (r1t * r06_h5, r1t * r06_h6);
         let arm = r1t * p16 - p12;
+        let arm_ = plane.split(&arm);
         let t5 = wrist5.solve(h2.dot(&target_h6), free[4]);
         // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
         let mut turned: Option<(Angle, Fit, (f64, Fit))> = None;
         for (k, q5) in t5.as_slice().iter().enumerate() {
-            let r5 = q5.rot(&h5);
             // q6 — SP1: R6 h5 = (R14 R5)ᵀ R1ᵀ R06 h5 with R14 = rot(h2, θ): with θ known,
             // one per (q1, q5), whichever elbow.
-            let q6_for = |r14: &M3| {
+            let q6_for = |r5: &M3, r14: &M3| {
                 let x = r5.transpose() * (r14.transpose() * target_h5);
                 sp1(&h5, &x, &h6, free[5])
-            };
-            // θ known: R14 = rot(h2, θ), and with it q6 (given, or by SP1).
-            let theta_known = |t: Angle, q6: Option<(f64, Fit)>| {
-                let r14 = t.rot(&h2);
-                let q6 = q6.unwrap_or_else(|| q6_for(&r14));
-                Arm::Theta { t, r14, q6 }
             };
             let (mode, ft) = match (k, turned) {
                 // (θ + π, the other q5, q6 + π) solves the wrist like (θ, q5, q6).
                 (1, Some((t, ft, (q6, f6)))) => {
-                    (theta_known(half_turn(t), Some((wrap(q6 + PI), f6))), ft)
+                    let q6 = (wrap(q6 + PI), f6);
+                    (
+                        Arm::Theta {
+                            t: half_turn(t),
+                            q6,
+                        },
+                        ft,
+                    )
                 }
                 _ => {
+                    let r5 = q5.rot(&h5);
+                    // θ known, and with it q6.
+                    let theta_known = |t: Angle| Arm::Theta {
+                        t,
+                        q6: q6_for(&r5, &t.rot(&h2)),
+                    };
                     let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
                     // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist
                     // singularity q4 = free — or, when that q4 puts the wrist out of the
@@ -366,44 +405,57 @@ pub fn three_parallel_two_intersecting(
                         if t.fit == Fit::LeastSquares {
                             let hint = free[1] + s3 * free[2] + s4 * free[3];
                             let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
-                            theta_known(Angle::new(theta), None)
+                            theta_known(Angle::new(theta))
                         } else {
-                            Arm::Q4 { q4, known }
+                            Arm::Q4 { q4, known, r5 }
                         }
                     } else {
-                        theta_known(theta, None)
+                        theta_known(theta)
                     };
                     (mode, ft)
                 }
             };
             let fit = t1.fit.and(t5.fit).and(ft);
-            if let (0, WristPair::HalfTurn, Arm::Theta { t, q6, .. }) = (k, pair, mode) {
+            if let (0, WristPair::HalfTurn, Arm::Theta { t, q6 }) = (k, pair, mode) {
                 // θ from the wrist (not the singular branch's choice).
                 if ft != Fit::Free {
                     turned = Some((t, ft, q6));
                 }
             }
-            let (reach, known) = match mode {
-                Arm::Theta { r14, .. } => (arm - r14 * p45, p34),
-                // θ, so q6, depends on the elbow: found per q3 below.
-                Arm::Q4 { known, .. } => (arm, known),
-            };
-            // In the plane ⟂ h2 (the components along h2 agree by step 2).
-            let d3 = flat(&h2, &reach).norm();
-            let t3 = match mode {
-                Arm::Theta { .. } => elbow.solve(d3, free[2]),
-                Arm::Q4 { .. } => sp3(&flat(&h2, &known), &flat(&h2, &(-p23)), &h3, d3, free[2]),
-            };
-            for q3 in t3.as_slice() {
-                let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &reach, &h2, free[1]);
-                let (q4, (q6, f6)) = match mode {
-                    Arm::Theta { t, q6, .. } => (wrap(s4 * (t.theta - q2 - s3 * q3.theta)), q6),
-                    Arm::Q4 { q4, .. } => (q4, q6_for(&rot(&h2, q2 + s3 * q3.theta + s4 * q4))),
-                };
-                out.push(
-                    [q1.theta, q2, q3.theta, q4, q5.theta, q6],
-                    fit.and(t3.fit).and(f2).and(f6),
-                );
+            match mode {
+                Arm::Theta { t, q6: (q6, f6) } => {
+                    // In the plane ⟂ h2 (the components along h2 agree by step 2): the
+                    // wrist centre's offset `reach = arm − rot(h2, θ) p45` from joint 2,
+                    // and per q3 the arm `p23 + R3 p34` that q2 turns onto it.
+                    let reach = arm_ - p45_.turn(&t, 1.0);
+                    let t3 = elbow.solve(reach.flat_norm(), free[2]);
+                    for q3 in t3.as_slice() {
+                        let (q2, f2) = sp1_planar(&(p23_ + p34_.turn(q3, s3)), &reach, free[1]);
+                        let q4 = wrap(s4 * (t.theta - q2 - s3 * q3.theta));
+                        out.push(
+                            [q1.theta, q2, q3.theta, q4, q5.theta, q6],
+                            fit.and(t3.fit).and(f2).and(f6),
+                        );
+                    }
+                }
+                Arm::Q4 { q4, known, r5 } => {
+                    // θ, so q6, depends on the elbow: found per q3.
+                    let t3 = sp3(
+                        &flat(&h2, &known),
+                        &flat(&h2, &(-p23)),
+                        &h3,
+                        flat(&h2, &arm).norm(),
+                        free[2],
+                    );
+                    for q3 in t3.as_slice() {
+                        let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &arm, &h2, free[1]);
+                        let (q6, f6) = q6_for(&r5, &rot(&h2, q2 + s3 * q3.theta + s4 * q4));
+                        out.push(
+                            [q1.theta, q2, q3.theta, q4, q5.theta, q6],
+                            fit.and(t3.fit).and(f2).and(f6),
+                        );
+                    }
+                }
             }
         }
     }
@@ -413,12 +465,11 @@ pub fn three_parallel_two_intersecting(
 /// What fixes the UR arm's last parallel joint.
 #[derive(Clone, Copy)]
 enum Arm {
-    /// `θ = q2 ± q3 ± q4` is known, so are `R14 = rot(h2, θ)` and q6 (which does not
-    /// depend on the elbow then).
-    Theta { t: Angle, r14: M3, q6: (f64, Fit) },
+    /// `θ = q2 ± q3 ± q4` is known, so is q6 (which does not depend on the elbow then).
+    Theta { t: Angle, q6: (f64, Fit) },
     /// q4 is (the wrist singularity's free joint), so is the wrist centre's offset from
-    /// joint 3, `known = p34 + rot(h4, q4) p45`.
-    Q4 { q4: f64, known: V3 },
+    /// joint 3, `known = p34 + rot(h4, q4) p45`; `r5 = rot(h5, q5)` for q6 per elbow.
+    Q4 { q4: f64, known: V3, r5: M3 },
 }
 
 /// At the UR wrist singularity: the `θ` nearest to `hint` that puts the wrist centre in

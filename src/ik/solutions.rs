@@ -234,12 +234,16 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     let mut any_unchecked = false;
     for c in candidates.as_slice() {
         let mut q = c.q;
+        // `&`, not `&&`: one pass, no branch per joint.
+        let (mut finite, mut within_limits) = (true, true);
         for i in 0..N {
             if revolute[i] {
                 q[i] = into_limits(q[i], limits[i]);
             }
+            finite &= q[i].is_finite();
+            within_limits &= (q[i] >= limits[i][0]) & (q[i] <= limits[i][1]);
         }
-        if q.iter().any(|x| !x.is_finite()) {
+        if !finite {
             continue;
         }
         let (residual, singular) = match c.fit {
@@ -248,7 +252,6 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         };
         // Unchecked branches have residual 0: every subproblem solved exactly.
         let exact = residual <= EXACT_TOLERANCE;
-        let within_limits = (0..N).all(|i| q[i] >= limits[i][0] && q[i] <= limits[i][1]);
         let branch = IkBranch {
             q,
             exact,

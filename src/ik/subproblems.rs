@@ -11,7 +11,7 @@
 //! meaningless.
 
 use super::geometry::{scale, sqrt0, Angle, V3};
-use crate::math::{fast_atan2 as atan2, sqrt};
+use crate::math::{abs, fast_atan2 as atan2, sqrt};
 
 /// A discriminant smaller than this many times its estimated rounding error
 /// (`ε · terms`) is zero: the two roots are one double root.
@@ -32,34 +32,25 @@ const MERGE_RELATIVE: f64 = 1e-11;
 /// taken to lie on the axis: the rotation about that axis leaves it where it is.
 pub const ON_AXIS: f64 = 1e-18;
 
-/// How a subproblem's solution relates to the data.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// How a subproblem's solution relates to the data, from the strongest to the weakest
+/// (the order [`Fit::and`] uses).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Fit {
     /// Solves the equations (to rounding).
     Exact,
-    /// The nearest solution: the equations have none.
-    LeastSquares,
     /// A double root (two solutions that met): exact, at a singular configuration.
     Double,
     /// The angle is free (any value solves it): the caller's value was used.
     Free,
+    /// The nearest solution: the equations have none.
+    LeastSquares,
 }
 
 impl Fit {
     /// The weaker of two fits (least squares dominates, then free, then double).
     #[inline]
     pub fn and(self, other: Fit) -> Fit {
-        let rank = |f: Fit| match f {
-            Fit::Exact => 0,
-            Fit::Double => 1,
-            Fit::Free => 2,
-            Fit::LeastSquares => 3,
-        };
-        if rank(other) > rank(self) {
-            other
-        } else {
-            self
-        }
+        self.max(other)
     }
 }
 
@@ -129,16 +120,154 @@ pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
 #[inline(always)]
 fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
     let (a, b) = (off_axis(k, p1), off_axis(k, p2));
-    let (na, nb) = (a.norm_squared(), b.norm_squared());
-    let s1 = scale(p1.norm_squared());
-    let s2 = scale(p2.norm_squared());
+    let lengths = [
+        (a.norm_squared(), p1.norm_squared()),
+        (b.norm_squared(), p2.norm_squared()),
+    ];
+    let fit = sp1_fit(lengths, || k.dot(p1) - k.dot(p2))?;
+    Some((k.dot(&a.cross(&b)), a.dot(&b), fit))
+}
+
+/// SP1's decision from what it needs of `p1` and `p2`: per end, the squared length off
+/// the axis and the squared length, and (only asked for when the lengths agree) the
+/// difference of their components along the axis. `None`: an end lies on the axis.
+#[inline(always)]
+fn sp1_fit(lengths: [(f64, f64); 2], along_gap: impl FnOnce() -> f64) -> Option<Fit> {
+    let [(na, n1), (nb, n2)] = lengths;
+    let (s1, s2) = (scale(n1), scale(n2));
     if na <= ON_AXIS * s1 || nb <= ON_AXIS * s2 {
         return None;
     }
-    let same = (na - nb).abs() <= 1e-9 * (na + nb)
-        && (k.dot(p1) - k.dot(p2)).abs() <= 1e-9 * sqrt(s1 + s2);
-    let fit = if same { Fit::Exact } else { Fit::LeastSquares };
-    Some((k.dot(&a.cross(&b)), a.dot(&b), fit))
+    let same = (na - nb).abs() <= 1e-9 * (na + nb) && along_gap().abs() <= 1e-9 * sqrt(s1 + s2);
+    Some(if same { Fit::Exact } else { Fit::LeastSquares })
+}
+
+/// A vector split for turns about one axis `k`: its coordinates `v` in the plane ⟂ `k`
+/// (in an orthonormal basis `(e1, e2)` with `e1 × e2 = k`) and its component `along` `k`.
+/// A turn about `k` turns `v` as a 2-D rotation and keeps `along`; SP1 about `k` needs
+/// nothing else ([`sp1_planar`]). For the arms whose middle axes are parallel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Planar {
+    /// In-plane coordinates.
+    pub v: [f64; 2],
+    /// Component along the axis.
+    pub along: f64,
+}
+
+impl core::ops::Add for Planar {
+    type Output = Planar;
+
+    #[inline]
+    fn add(self, other: Planar) -> Planar {
+        Planar {
+            v: [self.v[0] + other.v[0], self.v[1] + other.v[1]],
+            along: self.along + other.along,
+        }
+    }
+}
+
+impl core::ops::Sub for Planar {
+    type Output = Planar;
+
+    #[inline]
+    fn sub(self, other: Planar) -> Planar {
+        Planar {
+            v: [self.v[0] - other.v[0], self.v[1] - other.v[1]],
+            along: self.along - other.along,
+        }
+    }
+}
+
+impl Planar {
+    /// Turned about the axis by the angle whose sine is `sign · a.sin` (`sign` = ±1: an
+    /// axis parallel or antiparallel to `k`) and cosine `a.cos`.
+    #[inline]
+    pub fn turn(self, a: &Angle, sign: f64) -> Planar {
+        let (s, c) = (sign * a.sin, a.cos);
+        Planar {
+            v: [c * self.v[0] - s * self.v[1], s * self.v[0] + c * self.v[1]],
+            along: self.along,
+        }
+    }
+
+    /// The length of the in-plane part.
+    #[inline]
+    pub fn flat_norm(&self) -> f64 {
+        sqrt(self.v[0] * self.v[0] + self.v[1] * self.v[1])
+    }
+}
+
+/// The plane ⟂ a unit axis `k`, for [`Planar`] coordinates.
+#[derive(Clone, Copy, Debug)]
+pub struct Plane {
+    e1: V3,
+    e2: V3,
+    k: V3,
+}
+
+impl Plane {
+    /// The plane ⟂ the unit `k`.
+    pub fn new(k: &V3) -> Plane {
+        let e = if abs(k.x) < 0.6 {
+            V3::x()
+        } else if abs(k.y) < 0.6 {
+            V3::y()
+        } else {
+            V3::z()
+        };
+        let e1 = k.cross(&e).normalize();
+        Plane {
+            e1,
+            e2: k.cross(&e1),
+            k: *k,
+        }
+    }
+
+    /// `v` in this plane's coordinates.
+    #[inline]
+    pub fn split(&self, v: &V3) -> Planar {
+        Planar {
+            v: [self.e1.dot(v), self.e2.dot(v)],
+            along: self.k.dot(v),
+        }
+    }
+
+    /// The vector whose coordinates are `x`.
+    #[inline]
+    pub fn join(&self, x: &Planar) -> V3 {
+        self.e1 * x.v[0] + self.e2 * x.v[1] + self.k * x.along
+    }
+}
+
+/// [`sp1`] about the axis of the [`Plane`] `p1` and `p2` are split for: the same
+/// decision (exact, least squares, free) from the split vectors, with a 2-D cross product.
+#[inline]
+pub fn sp1_planar(p1: &Planar, p2: &Planar, free: f64) -> (f64, Fit) {
+    let ([a0, a1], [b0, b1]) = (p1.v, p2.v);
+    let (na, nb) = (a0 * a0 + a1 * a1, b0 * b0 + b1 * b1);
+    let lengths = [
+        (na, na + p1.along * p1.along),
+        (nb, nb + p2.along * p2.along),
+    ];
+    match sp1_fit(lengths, || p1.along - p2.along) {
+        Some(fit) => (atan2(a0 * b1 - a1 * b0, a0 * b0 + a1 * b1), fit),
+        None => (free, Fit::Free),
+    }
+}
+
+/// [`sp1_planar`] with the sine and cosine of the angle (as [`sp1_angle`]).
+#[inline]
+pub fn sp1_planar_angle(p1: &Planar, p2: &Planar, free: f64) -> (Angle, Fit) {
+    let ([a0, a1], [b0, b1]) = (p1.v, p2.v);
+    let (na, nb) = (a0 * a0 + a1 * a1, b0 * b0 + b1 * b1);
+    let lengths = [
+        (na, na + p1.along * p1.along),
+        (nb, nb + p2.along * p2.along),
+    ];
+    match sp1_fit(lengths, || p1.along - p2.along) {
+        Some(fit) => (Angle::atan2(a0 * b1 - a1 * b0, a0 * b0 + a1 * b1), fit),
+        None => (Angle::new(free), Fit::Free),
+    }
 }
 
 /// `θ = φ ± atan2(√(r² − b²), b)` for `a cos θ + a' sin θ = b` written as
@@ -172,8 +301,14 @@ fn cos_equation(
         return Roots::one(Angle::new(free), fit);
     }
     let disc = rr - b * b;
-    let noise = EPS * (2.0 * sqrt(rr) * (terms + sqrt(mag2)) + rr);
-    let double = disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr);
+    // `2√rr (terms + √mag2) ≤ rr + 2 terms² + 2 mag2` (AM–GM twice): a discriminant above
+    // that bound's merge distance is no double root, whatever the noise; only those
+    // within it pay for the noise's two square roots.
+    let bound = EPS * (2.0 * rr + 2.0 * (terms * terms + mag2));
+    let double = disc.abs() <= (ROOT_MERGE * bound).max(MERGE_RELATIVE * rr) && {
+        let noise = EPS * (2.0 * sqrt(rr) * (terms + sqrt(mag2)) + rr);
+        disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr)
+    };
     if double || disc < 0.0 {
         // θ = φ where b ≥ 0, else φ + π: the nearest to r cos(θ − φ) = b.
         let sign = if b >= 0.0 { 1.0 } else { -1.0 };
@@ -532,6 +667,49 @@ mod tests {
         // A point on the axis: no circle, the free value.
         let on_axis = Sp4::new(&h, &(k * 2.0), &k);
         same(on_axis.solve(0.1, 0.3), sp4(&h, &(k * 2.0), &k, 0.1, 0.3));
+    }
+
+    #[test]
+    fn sp1_in_the_plane_decides_as_sp1() {
+        let k = unit(0.2, -0.5, 1.0);
+        let plane = Plane::new(&k);
+        let p1 = V3::new(0.3, 0.4, -0.2);
+        let turned = rot(&k, 1.1) * p1;
+        let cases = [
+            (p1, turned),                     // exact
+            (p1, turned * 2.0),               // least squares: other length
+            (p1, turned + k * 0.1),           // least squares: other height
+            (k * 2.0, turned),                // free: p1 on the axis
+            (p1, k * -0.5),                   // free: p2 on the axis
+            (p1 + k * 0.3, turned + k * 0.3), // exact, off the origin's plane
+        ];
+        for (a, b) in cases {
+            let (want, want_fit) = sp1(&a, &b, &k, 0.25);
+            let (got, got_fit) = sp1_planar(&plane.split(&a), &plane.split(&b), 0.25);
+            assert_eq!(got_fit, want_fit, "{a:?} {b:?}");
+            assert!(wrap(got - want).abs() < 1e-14, "{got} vs {want}");
+            let (angle, fit) = sp1_planar_angle(&plane.split(&a), &plane.split(&b), 0.25);
+            assert_eq!((angle.theta, fit), (got, got_fit));
+            assert!((angle.sin - got.sin()).abs() < 1e-15 && (angle.cos - got.cos()).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn planar_turns_are_rotations_about_the_axis() {
+        let k = unit(-0.7, 0.1, 0.4);
+        let plane = Plane::new(&k);
+        let p = V3::new(0.5, -0.3, 0.8);
+        for (theta, sign) in [(0.4, 1.0), (-2.2, 1.0), (1.3, -1.0)] {
+            let a = Angle::new(theta);
+            let want = rot(&k, sign * theta) * p;
+            let got = plane.join(&plane.split(&p).turn(&a, sign));
+            assert!((got - want).norm() < 1e-15, "{got:?} {want:?}");
+        }
+        let (u, v) = (V3::new(1.0, 2.0, 3.0), V3::new(-0.5, 0.25, 4.0));
+        let (su, sv) = (plane.split(&u), plane.split(&v));
+        assert!((plane.join(&(su + sv)) - (u + v)).norm() < 1e-14);
+        assert!((plane.join(&(su - sv)) - (u - v)).norm() < 1e-14);
+        assert!((su.flat_norm() - (u - k * k.dot(&u)).norm()).abs() < 1e-14);
     }
 
     #[test]
