@@ -13,8 +13,8 @@
 use super::geometry::{closest_points, rot, Angle, Geometry, Orbit, Pose, M3, V3};
 use super::solutions::Candidates;
 use super::subproblems::{
-    half_turn, sp1, sp1_angle, sp1_planar, sp1_planar_angle, sp2, sp3, sp4, wrap, Fit, Plane, Sp3,
-    Sp4,
+    half_turn, sp1, sp1_angle, sp1_angles_2, sp1_planar, sp1_planar_angle, sp1_planar_sides,
+    sp1_sides, sp2, sp3, sp4, wrap, Fit, Plane, Sp3, Sp4,
 };
 use core::f64::consts::PI;
 
@@ -109,10 +109,12 @@ impl Wrist {
         let t5 = self.q5.solve(h4.dot(&r36_h6), 0.0);
         if self.pair == WristPair::HalfTurn && t5.n == 2 {
             let q5 = t5.angles[0];
-            let (q4, f4) = sp1(&self.h6_about_h5.at(&q5), &r36_h6, h4, free[0]);
+            let sides4 = sp1_sides(&self.h6_about_h5.at(&q5), &r36_h6, h4);
             // Two distinct roots: h4 ∦ R5 h6, so q4 is not free.
-            if f4 != Fit::Free {
-                let (q6, f6) = sp1(&r36t_h4, &self.h4_about_h5.back(&q5), h6, free[1]);
+            if sides4.is_some() {
+                // q4 and q6 side by side (q6's SP1 does not need q4).
+                let sides6 = sp1_sides(&r36t_h4, &self.h4_about_h5.back(&q5), h6);
+                let [(q4, f4), (q6, f6)] = sp1_angles_2([sides4, sides6], free);
                 let fit = t5.fit.and(f4).and(f6);
                 out[0] = ([q4, q5.theta, q6], fit);
                 out[1] = ([wrap(q4 + PI), t5.angles[1].theta, wrap(q6 + PI)], fit);
@@ -429,8 +431,15 @@ pub fn three_parallel_two_intersecting(
                     // and per q3 the arm `p23 + R3 p34` that q2 turns onto it.
                     let reach = arm_ - p45_.turn(&t, 1.0);
                     let t3 = elbow.solve(reach.flat_norm(), free[2]);
-                    for q3 in t3.as_slice() {
-                        let (q2, f2) = sp1_planar(&(p23_ + p34_.turn(q3, s3)), &reach, free[1]);
+                    // q2 — SP1 for each elbow (with two, their atan2 side by side).
+                    let sides = |q3: &Angle| sp1_planar_sides(&(p23_ + p34_.turn(q3, s3)), &reach);
+                    let q2s = if t3.n == 2 {
+                        sp1_angles_2([sides(&t3.angles[0]), sides(&t3.angles[1])], [free[1]; 2])
+                    } else {
+                        let q3 = &t3.angles[0];
+                        [sp1_planar(&(p23_ + p34_.turn(q3, s3)), &reach, free[1]); 2]
+                    };
+                    for (q3, (q2, f2)) in t3.as_slice().iter().zip(q2s) {
                         let q4 = wrap(s4 * (t.theta - q2 - s3 * q3.theta));
                         out.push(
                             [q1.theta, q2, q3.theta, q4, q5.theta, q6],

@@ -11,7 +11,7 @@
 //! meaningless.
 
 use super::geometry::{scale, sqrt0, Angle, V3};
-use crate::math::{abs, fast_atan2 as atan2, sqrt};
+use crate::math::{abs, fast_atan2 as atan2, fast_atan2_n, sqrt};
 
 /// A discriminant smaller than this many times its estimated rounding error
 /// (`ε · terms`) is zero: the two roots are one double root.
@@ -116,9 +116,11 @@ pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
     }
 }
 
-/// SP1's `θ = atan2(y, x)` as `(y, x)` and the fit; `None` when the angle is free.
+/// SP1 up to its `atan2`: `θ = atan2(y, x)` as `(y, x)` and the fit; `None` when the
+/// angle is free. Two of them (independent data) cost one two-lane `atan2` with
+/// [`sp1_angles_2`].
 #[inline(always)]
-fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
+pub fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
     let (a, b) = (off_axis(k, p1), off_axis(k, p2));
     let lengths = [
         (a.norm_squared(), p1.norm_squared()),
@@ -243,30 +245,48 @@ impl Plane {
 /// decision (exact, least squares, free) from the split vectors, with a 2-D cross product.
 #[inline]
 pub fn sp1_planar(p1: &Planar, p2: &Planar, free: f64) -> (f64, Fit) {
+    match sp1_planar_sides(p1, p2) {
+        Some((y, x, fit)) => (atan2(y, x), fit),
+        None => (free, Fit::Free),
+    }
+}
+
+/// [`sp1_planar`] up to its `atan2` (as [`sp1_sides`]).
+#[inline(always)]
+pub fn sp1_planar_sides(p1: &Planar, p2: &Planar) -> Option<(f64, f64, Fit)> {
     let ([a0, a1], [b0, b1]) = (p1.v, p2.v);
     let (na, nb) = (a0 * a0 + a1 * a1, b0 * b0 + b1 * b1);
     let lengths = [
         (na, na + p1.along * p1.along),
         (nb, nb + p2.along * p2.along),
     ];
-    match sp1_fit(lengths, || p1.along - p2.along) {
-        Some(fit) => (atan2(a0 * b1 - a1 * b0, a0 * b0 + a1 * b1), fit),
-        None => (free, Fit::Free),
-    }
+    let fit = sp1_fit(lengths, || p1.along - p2.along)?;
+    Some((a0 * b1 - a1 * b0, a0 * b0 + a1 * b1, fit))
 }
 
 /// [`sp1_planar`] with the sine and cosine of the angle (as [`sp1_angle`]).
 #[inline]
 pub fn sp1_planar_angle(p1: &Planar, p2: &Planar, free: f64) -> (Angle, Fit) {
-    let ([a0, a1], [b0, b1]) = (p1.v, p2.v);
-    let (na, nb) = (a0 * a0 + a1 * a1, b0 * b0 + b1 * b1);
-    let lengths = [
-        (na, na + p1.along * p1.along),
-        (nb, nb + p2.along * p2.along),
-    ];
-    match sp1_fit(lengths, || p1.along - p2.along) {
-        Some(fit) => (Angle::atan2(a0 * b1 - a1 * b0, a0 * b0 + a1 * b1), fit),
+    match sp1_planar_sides(p1, p2) {
+        Some((y, x, fit)) => (Angle::atan2(y, x), fit),
         None => (Angle::new(free), Fit::Free),
+    }
+}
+
+/// The angles of two SP1s from their sides ([`sp1_sides`], [`sp1_planar_sides`]): one
+/// two-lane `atan2` when both are determined, `free[i]` where one is free.
+#[inline(always)]
+pub fn sp1_angles_2(sides: [Option<(f64, f64, Fit)>; 2], free: [f64; 2]) -> [(f64, Fit); 2] {
+    let one = |side: Option<(f64, f64, Fit)>, free: f64| match side {
+        Some((y, x, fit)) => (atan2(y, x), fit),
+        None => (free, Fit::Free),
+    };
+    match sides {
+        [Some((y0, x0, f0)), Some((y1, x1, f1))] => {
+            let [t0, t1] = fast_atan2_n([y0, y1], [x0, x1]);
+            [(t0, f0), (t1, f1)]
+        }
+        [a, b] => [one(a, free[0]), one(b, free[1])],
     }
 }
 
@@ -291,6 +311,52 @@ fn cos_equation(
     phi: Option<Angle>,
 ) -> Roots {
     let rr = ca * ca + sa * sa;
+    let sd = match cos_case(rr, b, terms, mag2) {
+        CosCase::Two { sd } => sd,
+        CosCase::NoCircle { fit } => return Roots::one(Angle::new(free), fit),
+        CosCase::One { fit } => {
+            // θ = φ where b ≥ 0, else φ + π: the nearest to r cos(θ − φ) = b.
+            let sign = if b >= 0.0 { 1.0 } else { -1.0 };
+            let angle = match phi {
+                Some(phi) if sign > 0.0 => phi,
+                Some(phi) => half_turn(phi),
+                None => Angle::atan2(sign * sa, sign * ca),
+            };
+            return Roots::one(angle, fit);
+        }
+    };
+    // φ ± d, with d = atan2(√(r² − b²), b) ∈ [0, π].
+    let (plus, minus) = match phi {
+        Some(phi) => {
+            let d = atan2(sd, b);
+            (wrap(phi.theta + d), wrap(phi.theta - d))
+        }
+        None => {
+            let [plus, minus] = fast_atan2_n(
+                [sa * b + ca * sd, sa * b - ca * sd],
+                [ca * b - sa * sd, ca * b + sa * sd],
+            );
+            (plus, minus)
+        }
+    };
+    two_roots(ca, sa, b, sd, rr, [plus, minus])
+}
+
+/// Which solutions `a cos θ + a' sin θ = b` has (see [`cos_equation`]).
+#[derive(Clone, Copy)]
+enum CosCase {
+    /// `r = 0`: every θ gives the same value (free if it is `b`, else least squares).
+    NoCircle { fit: Fit },
+    /// One root: a double root, or the least-squares `φ` / `φ + π`.
+    One { fit: Fit },
+    /// Two roots `φ ± d`, with `sin d = sd / r`.
+    Two { sd: f64 },
+}
+
+/// [`cos_equation`]'s decision, from `rr = r²`, `b` and the sizes its rounding errors are
+/// estimated from.
+#[inline(always)]
+fn cos_case(rr: f64, b: f64, terms: f64, mag2: f64) -> CosCase {
     if rr <= ON_AXIS * scale(mag2) {
         // r = 0: every θ gives the same value; exact only if that is b.
         let fit = if b * b <= 1e-18 * scale(mag2) {
@@ -298,7 +364,7 @@ fn cos_equation(
         } else {
             Fit::LeastSquares
         };
-        return Roots::one(Angle::new(free), fit);
+        return CosCase::NoCircle { fit };
     }
     let disc = rr - b * b;
     // `2√rr (terms + √mag2) ≤ rr + 2 terms² + 2 mag2` (AM–GM twice): a discriminant above
@@ -309,43 +375,31 @@ fn cos_equation(
         let noise = EPS * (2.0 * sqrt(rr) * (terms + sqrt(mag2)) + rr);
         disc.abs() <= (ROOT_MERGE * noise).max(MERGE_RELATIVE * rr)
     };
-    if double || disc < 0.0 {
-        // θ = φ where b ≥ 0, else φ + π: the nearest to r cos(θ − φ) = b.
-        let sign = if b >= 0.0 { 1.0 } else { -1.0 };
-        let fit = if double {
-            Fit::Double
-        } else {
-            Fit::LeastSquares
-        };
-        let angle = match phi {
-            Some(phi) if sign > 0.0 => phi,
-            Some(phi) => half_turn(phi),
-            None => Angle::atan2(sign * sa, sign * ca),
-        };
-        return Roots::one(angle, fit);
-    }
-    let sd = sqrt0(disc);
-    let inv = 1.0 / rr;
-    // φ ± d, with d = atan2(√(r² − b²), b) ∈ [0, π].
-    let (plus, minus) = match phi {
-        Some(phi) => {
-            let d = atan2(sd, b);
-            (wrap(phi.theta + d), wrap(phi.theta - d))
+    if double {
+        CosCase::One { fit: Fit::Double }
+    } else if disc < 0.0 {
+        CosCase::One {
+            fit: Fit::LeastSquares,
         }
-        None => (
-            atan2(sa * b + ca * sd, ca * b - sa * sd),
-            atan2(sa * b - ca * sd, ca * b + sa * sd),
-        ),
-    };
+    } else {
+        CosCase::Two { sd: sqrt0(disc) }
+    }
+}
+
+/// The two roots `φ ± d` of `r cos(θ − φ) = b` (angles `thetas`), with their sines and
+/// cosines from the same products: `cos = (a b ∓ a' √…) / r²`, `sin = (a' b ± a √…) / r²`.
+#[inline(always)]
+fn two_roots(ca: f64, sa: f64, b: f64, sd: f64, rr: f64, thetas: [f64; 2]) -> Roots {
+    let inv = 1.0 / rr;
     Roots {
         angles: [
             Angle {
-                theta: plus,
+                theta: thetas[0],
                 sin: (sa * b + ca * sd) * inv,
                 cos: (ca * b - sa * sd) * inv,
             },
             Angle {
-                theta: minus,
+                theta: thetas[1],
                 sin: (sa * b - ca * sd) * inv,
                 cos: (ca * b + sa * sd) * inv,
             },
@@ -688,6 +742,21 @@ mod tests {
             let (got, got_fit) = sp1_planar(&plane.split(&a), &plane.split(&b), 0.25);
             assert_eq!(got_fit, want_fit, "{a:?} {b:?}");
             assert!(wrap(got - want).abs() < 1e-14, "{got} vs {want}");
+            // Two at once (3-D and planar sides): the same angles, fits and free values.
+            let sides = [
+                sp1_sides(&a, &b, &k),
+                sp1_planar_sides(&plane.split(&a), &plane.split(&b)),
+            ];
+            let pair = sp1_angles_2(sides, [0.25, 0.5]);
+            let want_free = [0.25, 0.5];
+            for (i, &(theta, fit)) in pair.iter().enumerate() {
+                assert_eq!(fit, want_fit);
+                let want_theta = if fit == Fit::Free { want_free[i] } else { want };
+                assert!(
+                    wrap(theta - want_theta).abs() < 1e-14,
+                    "{theta} vs {want_theta}"
+                );
+            }
             let (angle, fit) = sp1_planar_angle(&plane.split(&a), &plane.split(&b), 0.25);
             assert_eq!((angle.theta, fit), (got, got_fit));
             assert!((angle.sin - got.sin()).abs() < 1e-15 && (angle.cos - got.cos()).abs() < 1e-15);
