@@ -529,10 +529,11 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
     atan2_in_octant(y, x, n, d, swap)
 }
 
-/// [`fast_atan2`] of `L` pairs at once, lane by lane its bits: one pass of straight-line
-/// code over the lanes (which the compiler keeps in vector registers: two `atan2` for
-/// about 1.2 times the instructions of one), then the rare lanes with zeros, infinities
-/// or NaN through the full `atan2`.
+/// [`fast_atan2`] of `L` pairs at once, lane by lane its bits: on x86_64 and aarch64 one
+/// pass of straight-line code over the lanes (which the compiler keeps in vector
+/// registers: two `atan2` for about 1.2 times the instructions of one on x86_64), then the
+/// rare lanes with zeros, infinities or NaN through the full `atan2`; on other targets
+/// one [`fast_atan2`] per lane.
 ///
 /// ```
 /// let [a, b] = kinegen::math::fast_atan2_n([1.0, -0.5], [0.3, -2.0]);
@@ -541,17 +542,26 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
 #[inline(always)]
 pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
     let mut r = [0.0; L];
-    let mut any_special = false;
+    // Lanes pay off with vector registers for f64; elsewhere (a Cortex-M's soft-float
+    // doubles) they would only copy the polynomial into every caller: one call per lane.
+    #[cfg(not(any(target_arch = "x86_64", target_arch = "aarch64")))]
     for i in 0..L {
-        let (n, d, swap, special) = atan2_octant(y[i], x[i]);
-        // `|`, not `if`: no branch per lane (a special lane's arithmetic is discarded).
-        any_special |= special;
-        r[i] = atan2_in_octant(y[i], x[i], n, d, swap);
+        r[i] = fast_atan2(y[i], x[i]);
     }
-    if any_special {
+    #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
+    {
+        let mut any_special = false;
         for i in 0..L {
-            if atan2_octant(y[i], x[i]).3 {
-                r[i] = atan2(y[i], x[i]);
+            let (n, d, swap, special) = atan2_octant(y[i], x[i]);
+            // `|`, not `if`: no branch per lane (a special lane's arithmetic is discarded).
+            any_special |= special;
+            r[i] = atan2_in_octant(y[i], x[i], n, d, swap);
+        }
+        if any_special {
+            for i in 0..L {
+                if atan2_octant(y[i], x[i]).3 {
+                    r[i] = atan2(y[i], x[i]);
+                }
             }
         }
     }
