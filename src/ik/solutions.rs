@@ -4,7 +4,7 @@
 
 use super::geometry::Pose;
 use super::subproblems::{wrap, Fit};
-use core::f64::consts::TAU;
+use core::f64::consts::{PI, TAU};
 
 /// A candidate from a family solver: joint values and how the subproblems fitted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -237,11 +237,20 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         // `&`, not `&&`: one pass, no branch per joint.
         let (mut finite, mut within_limits) = (true, true);
         for i in 0..N {
+            let [lo, hi] = limits[i];
+            if revolute[i] && lo <= -PI && hi >= PI {
+                // Limits that hold a whole turn (a constant test where `limits` is the
+                // robot's `LIMITS`): wrapped into (−π, π], a value is within them, and
+                // only a non-finite one comes out as NaN.
+                q[i] = wrap(q[i]);
+                finite &= !q[i].is_nan();
+                continue;
+            }
             if revolute[i] {
                 q[i] = into_limits(q[i], limits[i]);
             }
             finite &= q[i].is_finite();
-            within_limits &= (q[i] >= limits[i][0]) & (q[i] <= limits[i][1]);
+            within_limits &= (q[i] >= lo) & (q[i] <= hi);
         }
         if !finite {
             continue;
