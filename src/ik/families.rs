@@ -10,7 +10,7 @@
 //! Joint numbers in the docs are 1-based, as in the robot's tables; `h`, `p` indices are
 //! 0-based.
 
-use super::geometry::{closest_points, rot, Angle, Geometry, Orbit, Pose, M3, V3};
+use super::geometry::{closest_points, orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
 use super::solutions::Candidates;
 use super::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_planar, sp1_planar_angle, sp1_planar_sides,
@@ -34,19 +34,6 @@ fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
 #[inline]
 fn flat(k: &V3, v: &V3) -> V3 {
     v - k * k.dot(v)
-}
-
-/// A vector orthogonal to the unit `k`.
-#[inline]
-fn orthogonal(k: &V3) -> V3 {
-    let e = if k.x.abs() < 0.6 {
-        V3::x()
-    } else if k.y.abs() < 0.6 {
-        V3::y()
-    } else {
-        V3::z()
-    };
-    k.cross(&e)
 }
 
 /// How a solver finds the second of a wrist's two solutions (the two roots of q5).

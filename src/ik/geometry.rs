@@ -160,6 +160,20 @@ impl Orbit {
     }
 }
 
+/// A vector orthogonal to the unit `k` (`k` crossed with the coordinate axis least
+/// parallel to it: never short).
+#[inline]
+pub(crate) fn orthogonal(k: &V3) -> V3 {
+    let e = if abs(k.x) < 0.6 {
+        V3::x()
+    } else if abs(k.y) < 0.6 {
+        V3::y()
+    } else {
+        V3::z()
+    };
+    k.cross(&e)
+}
+
 /// The points `a + s·u` and `b + t·v` closest to each other on two lines, or `None` when
 /// the lines are parallel (to `tol` in `|u × v|²`).
 pub fn closest_points(a: &V3, u: &V3, b: &V3, v: &V3, tol: f64) -> Option<(V3, V3)> {

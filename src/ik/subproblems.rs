@@ -10,8 +10,8 @@
 //! like, and splitting it into two roots `±1e-8` apart would make the angles after it
 //! meaningless.
 
-use super::geometry::{scale, sqrt0, Angle, V3};
-use crate::math::{abs, fast_atan2 as atan2, fast_atan2_n, sqrt};
+use super::geometry::{orthogonal, scale, sqrt0, Angle, V3};
+use crate::math::{fast_atan2 as atan2, fast_atan2_n, sqrt};
 
 /// A discriminant smaller than this many times its estimated rounding error
 /// (`ε · terms`) is zero: the two roots are one double root.
@@ -210,14 +210,7 @@ pub struct Plane {
 impl Plane {
     /// The plane ⟂ the unit `k`.
     pub fn new(k: &V3) -> Plane {
-        let e = if abs(k.x) < 0.6 {
-            V3::x()
-        } else if abs(k.y) < 0.6 {
-            V3::y()
-        } else {
-            V3::z()
-        };
-        let e1 = k.cross(&e).normalize();
+        let e1 = orthogonal(k).normalize();
         Plane {
             e1,
             e2: k.cross(&e1),
