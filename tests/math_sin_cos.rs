@@ -432,21 +432,11 @@ fn batched_special_lanes_are_scalar_sin_cos_exactly() {
         f64::INFINITY,
         f64::NEG_INFINITY,
     ];
-    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
     for &special in &specials {
         for lane in 0..6 {
             let mut x = [0.5, -1.0, 2.0, -3.0, 4.0, -5.0];
             x[lane] = special;
-            let (s, c) = sin_cos_n(x);
-            for i in 0..6 {
-                let (ss, sc) = sin_cos(x[i]);
-                assert!(
-                    same(s[i], ss) && same(c[i], sc),
-                    "lane {i} of {x:?}: ({}, {}) vs sin_cos ({ss}, {sc})",
-                    s[i],
-                    c[i]
-                );
-            }
+            lanes_are_scalar_sin_cos(x);
         }
     }
     let (s, _) = sin_cos_n([-0.0, 0.0]);
@@ -461,7 +451,6 @@ fn batched_special_lanes_are_scalar_sin_cos_exactly() {
 fn batched_lanes_past_64_share_one_flag_and_stay_exact() {
     // Lanes from 63 on share the last bit of the slow-lane mask: a special lane there
     // sends all of them through `sin_cos`, which gives the fast path's bits anyway.
-    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
     for special in [0.0, FRAC_PI_2, f64::NAN, 1e22] {
         for lane in [0, 10, 62, 63, 64, 69] {
             let mut x = [0.0; 70];
@@ -469,14 +458,22 @@ fn batched_lanes_past_64_share_one_flag_and_stay_exact() {
                 *v = 0.37 * i as f64 - 11.0;
             }
             x[lane] = special;
-            let (s, c) = sin_cos_n(x);
-            for i in 0..70 {
-                let (ss, sc) = sin_cos(x[i]);
-                assert!(
-                    same(s[i], ss) && same(c[i], sc),
-                    "lane {i}, special at {lane}"
-                );
-            }
+            lanes_are_scalar_sin_cos(x);
         }
+    }
+}
+
+/// Every lane of `sin_cos_n(x)` is `sin_cos` of it, bit for bit (signed zeros, NaN).
+fn lanes_are_scalar_sin_cos<const N: usize>(x: [f64; N]) {
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+    let (s, c) = sin_cos_n(x);
+    for i in 0..N {
+        let (ss, sc) = sin_cos(x[i]);
+        assert!(
+            same(s[i], ss) && same(c[i], sc),
+            "lane {i} of {x:?}: ({}, {}) vs sin_cos ({ss}, {sc})",
+            s[i],
+            c[i]
+        );
     }
 }
