@@ -59,9 +59,10 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// multiple of π/2, or any |x| beyond about 2¹⁶·π/4 ≈ 5·10⁴), sends those lanes, and only
 /// those, through [`sin_cos`]. (Joints at exactly 0 or ±π/2 are common — home poses,
 /// snapped configurations, the stretched arm an unreachable IK pose gives — and taking
-/// every lane through [`sin_cos`] for one of them cost a UR5 `fk` about 500 instructions.) For uniform angles in [−2π, 2π] a lane needs that one time in 2·10⁴, a call of
-/// six lanes one time in 4000. Generated f64 code calls this once per function with all
-/// its joint angles.
+/// every lane through [`sin_cos`] for one of them cost a UR5 `fk` about 500
+/// instructions.) For uniform angles in [−2π, 2π] a lane needs that one time in 2·10⁴, a
+/// call of six lanes one time in 4000. Generated f64 code calls this once per function
+/// with all its joint angles.
 ///
 /// Doing fdlibm's second and third rounds for every lane instead also works if each
 /// round's rounding error is carried (fdlibm's later rounds restart from the previous
@@ -122,7 +123,8 @@ fn sin_cos_pair<const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]
 }
 
 /// Two lanes of [`sin_cos_n`]'s fast path in plain Rust: each lane the fast path of
-/// [`sin_cos`], and the lanes it does not hold for (bit 0: lane 0, bit 1: lane 1). (On x86_64 LLVM's SLP vectoriser packed
+/// [`sin_cos`], and the lanes it does not hold for (bit 0: lane 0, bit 1: lane 1). (On
+/// x86_64 LLVM's SLP vectoriser packed
 /// this into SSE2 registers well for N = 6 angles alone, but inside a generated Jacobian
 /// it paired the lanes differently and the UR5 Jacobian became slower than with scalar
 /// calls; hence the intrinsics there.)
@@ -537,7 +539,8 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
 ///
 /// ```
 /// let [a, b] = kinegen::math::fast_atan2_n([1.0, -0.5], [0.3, -2.0]);
-/// assert_eq!((a, b), (kinegen::math::fast_atan2(1.0, 0.3), kinegen::math::fast_atan2(-0.5, -2.0)));
+/// assert_eq!(a, kinegen::math::fast_atan2(1.0, 0.3));
+/// assert_eq!(b, kinegen::math::fast_atan2(-0.5, -2.0));
 /// ```
 #[inline(always)]
 pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
