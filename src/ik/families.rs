@@ -13,7 +13,7 @@
 use super::geometry::{closest_points, orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
 use super::solutions::Candidates;
 use super::subproblems::{
-    half_turn, sp1, sp1_angle, sp1_angles_2, sp1_planar, sp1_planar_angle, sp1_planar_sides,
+    half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_angle, sp1_planar_sides,
     sp1_sides, sp2, sp3, sp4, wrap, Fit, Plane, Sp3, Sp4,
 };
 use core::f64::consts::PI;
@@ -423,8 +423,7 @@ pub fn three_parallel_two_intersecting(
                     let q2s = if t3.n == 2 {
                         sp1_angles_2([sides(&t3.angles[0]), sides(&t3.angles[1])], [free[1]; 2])
                     } else {
-                        let q3 = &t3.angles[0];
-                        [sp1_planar(&(p23_ + p34_.turn(q3, s3)), &reach, free[1]); 2]
+                        [sp1_from_sides(sides(&t3.angles[0]), free[1]); 2]
                     };
                     for (q3, (q2, f2)) in t3.as_slice().iter().zip(q2s) {
                         let q4 = wrap(s4 * (t.theta - q2 - s3 * q3.theta));

@@ -100,7 +100,14 @@ fn off_axis(k: &V3, p: &V3) -> V3 {
 /// their component along `k`; free (`free` returned) when `p1` or `p2` lies on the axis.
 #[inline]
 pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
-    match sp1_sides(p1, p2, k) {
+    sp1_from_sides(sp1_sides(p1, p2, k), free)
+}
+
+/// SP1's angle from its sides ([`sp1_sides`], [`sp1_planar_sides`]): `atan2(y, x)`, or
+/// `free` where the angle is free.
+#[inline(always)]
+pub fn sp1_from_sides(sides: Option<(f64, f64, Fit)>, free: f64) -> (f64, Fit) {
+    match sides {
         Some((y, x, fit)) => (atan2(y, x), fit),
         None => (free, Fit::Free),
     }
@@ -238,10 +245,7 @@ impl Plane {
 /// decision (exact, least squares, free) from the split vectors, with a 2-D cross product.
 #[inline]
 pub fn sp1_planar(p1: &Planar, p2: &Planar, free: f64) -> (f64, Fit) {
-    match sp1_planar_sides(p1, p2) {
-        Some((y, x, fit)) => (atan2(y, x), fit),
-        None => (free, Fit::Free),
-    }
+    sp1_from_sides(sp1_planar_sides(p1, p2), free)
 }
 
 /// [`sp1_planar`] up to its `atan2` (as [`sp1_sides`]).
@@ -270,16 +274,12 @@ pub fn sp1_planar_angle(p1: &Planar, p2: &Planar, free: f64) -> (Angle, Fit) {
 /// two-lane `atan2` when both are determined, `free[i]` where one is free.
 #[inline(always)]
 pub fn sp1_angles_2(sides: [Option<(f64, f64, Fit)>; 2], free: [f64; 2]) -> [(f64, Fit); 2] {
-    let one = |side: Option<(f64, f64, Fit)>, free: f64| match side {
-        Some((y, x, fit)) => (atan2(y, x), fit),
-        None => (free, Fit::Free),
-    };
     match sides {
         [Some((y0, x0, f0)), Some((y1, x1, f1))] => {
             let [t0, t1] = fast_atan2_n([y0, y1], [x0, x1]);
             [(t0, f0), (t1, f1)]
         }
-        [a, b] => [one(a, free[0]), one(b, free[1])],
+        [a, b] => [sp1_from_sides(a, free[0]), sp1_from_sides(b, free[1])],
     }
 }
 
