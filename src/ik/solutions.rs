@@ -234,7 +234,9 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     let mut any_unchecked = false;
     for c in candidates.as_slice() {
         let mut q = c.q;
-        // `&`, not `&&`: one pass, no branch per joint.
+        // One pass; the flags with `&=`, not `&&`. (Taking `within_limits` from
+        // `into_limits`, which compared the value already, measured 41 instructions more
+        // per PUMA 560 `ik`: the comparison stays.)
         let (mut finite, mut within_limits) = (true, true);
         for i in 0..N {
             let [lo, hi] = limits[i];
