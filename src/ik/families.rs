@@ -10,31 +10,14 @@
 //! Joint numbers in the docs are 1-based, as in the robot's tables; `h`, `p` indices are
 //! 0-based.
 
-use super::geometry::{closest_points, orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
+use super::geometry::{flat, meet, orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
+use super::regular;
 use super::solutions::Candidates;
 use super::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_angle, sp1_planar_sides,
     sp1_sides, sp2, sp3, sp4, wrap, Fit, Plane, Sp3, Sp4,
 };
 use core::f64::consts::PI;
-
-/// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
-const PARALLEL: f64 = 1e-20;
-
-/// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
-/// closest points: the engine proved they meet, this only absorbs rounding).
-fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
-    match closest_points(&g.p[i], &g.h[i], &g.p[j], &g.h[j], PARALLEL) {
-        Some((a, b)) => (a + b) * 0.5,
-        None => g.p[i],
-    }
-}
-
-/// The part of `v` orthogonal to the unit `k`.
-#[inline]
-fn flat(k: &V3, v: &V3) -> V3 {
-    v - k * k.dot(v)
-}
 
 /// How a solver finds the second of a wrist's two solutions (the two roots of q5).
 ///
@@ -168,6 +151,23 @@ fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
 /// 5. q5 — SP4, q4 and q6 — SP1 on `R36 = (R1 R2 R3)ᵀ R06` (the second root of q5 from
 ///    the first with [`WristPair::HalfTurn`]).
 pub fn spherical_two_parallel(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    pair: WristPair,
+) -> Candidates<6, 8> {
+    if pair == WristPair::HalfTurn {
+        if let Some(out) = regular::spherical_two_parallel(g, pose) {
+            return out;
+        }
+    }
+    spherical_two_parallel_by_branch(g, pose, free, pair)
+}
+
+/// [`spherical_two_parallel`] one branch after another, for every pose (the singular and
+/// unreachable ones too); the regular ones take the lanes of
+/// [`regular::spherical_two_parallel`] first.
+pub fn spherical_two_parallel_by_branch(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
@@ -314,6 +314,23 @@ pub fn spherical_two_intersecting_prismatic(
 /// only `θ ± q6`; the position then fixes q2, q3 once q4 is chosen: q4 = `free`, q3 — SP3
 /// and q2 — SP1 on the arm `p23 + R3 (p34 + R4 p45)`, q6 from the rotation.
 pub fn three_parallel_two_intersecting(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    pair: WristPair,
+) -> Candidates<6, 8> {
+    if pair == WristPair::HalfTurn {
+        if let Some(out) = regular::three_parallel_two_intersecting(g, pose) {
+            return out;
+        }
+    }
+    three_parallel_two_intersecting_by_branch(g, pose, free, pair)
+}
+
+/// [`three_parallel_two_intersecting`] one branch after another, for every pose (the
+/// singular and unreachable ones too); the regular ones take the lanes of
+/// [`regular::three_parallel_two_intersecting`] first.
+pub fn three_parallel_two_intersecting_by_branch(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],

@@ -241,6 +241,24 @@ impl<const N: usize> Geometry<N> {
     }
 }
 
+/// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.
+const PARALLEL: f64 = 1e-20;
+
+/// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
+/// closest points: the engine proved they meet, this only absorbs rounding).
+pub(crate) fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
+    match closest_points(&g.p[i], &g.h[i], &g.p[j], &g.h[j], PARALLEL) {
+        Some((a, b)) => (a + b) * 0.5,
+        None => g.p[i],
+    }
+}
+
+/// The part of `v` orthogonal to the unit `k`.
+#[inline]
+pub(crate) fn flat(k: &V3, v: &V3) -> V3 {
+    v - k * k.dot(v)
+}
+
 /// `|x|` with a floor, for relative tolerances.
 #[inline]
 pub(crate) fn scale(x: f64) -> f64 {

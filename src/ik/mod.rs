@@ -16,7 +16,9 @@ pub mod closed_form;
 pub mod dispatch;
 pub mod families;
 pub mod geometry;
+pub mod lanes;
 pub mod numeric;
+pub mod regular;
 pub mod solutions;
 pub mod subproblems;
 

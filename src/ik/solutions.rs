@@ -232,13 +232,21 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     // exactly.
     let mut unchecked = [false; K];
     let mut any_unchecked = false;
+    // Every joint revolute with limits that hold a whole turn (a constant where `limits`
+    // is the robot's `LIMITS`): a candidate within (−π, π] everywhere, as the solvers'
+    // angles almost always are, is wrapped and within its limits as it is.
+    let whole_turns = (0..N).all(|i| revolute[i] && limits[i][0] <= -PI && limits[i][1] >= PI);
     for c in candidates.as_slice() {
         let mut q = c.q;
         // One pass; the flags with `&=`, not `&&`. (Taking `within_limits` from
         // `into_limits`, which compared the value already, measured 41 instructions more
         // per PUMA 560 `ik`: the comparison stays.)
         let (mut finite, mut within_limits) = (true, true);
+        let wrapped = q.iter().fold(true, |all, &t| all & (t > -PI) & (t <= PI));
         for i in 0..N {
+            if whole_turns && wrapped {
+                break;
+            }
             let [lo, hi] = limits[i];
             if revolute[i] && lo <= -PI && hi >= PI {
                 // Limits that hold a whole turn (a constant test where `limits` is the

@@ -11,6 +11,7 @@
 //! meaningless.
 
 use super::geometry::{orthogonal, scale, sqrt0, Angle, V3};
+use super::lanes::Lanes;
 use crate::math::{fast_atan2 as atan2, fast_atan2_n, sqrt};
 
 /// A discriminant smaller than this many times its estimated rounding error
@@ -151,6 +152,25 @@ fn sp1_fit(lengths: [(f64, f64); 2], along_gap: impl FnOnce() -> f64) -> Option<
     Some(if same { Fit::Exact } else { Fit::LeastSquares })
 }
 
+/// [`sp1_fit`] in lanes, with the same tests: `None` when an end lies on the axis in some
+/// lane (the angle is free there), else which lanes are exact (the others least squares).
+#[inline(always)]
+pub(crate) fn sp1_fit_lanes<const L: usize>(
+    [(na, n1), (nb, n2)]: [(Lanes<L>, Lanes<L>); 2],
+    along_gap: Lanes<L>,
+) -> Option<[bool; L]> {
+    let (s1, s2) = (n1.map(scale), n2.map(scale));
+    let room = (s1 + s2).sqrt();
+    let mut off_axis = true;
+    let mut exact = [true; L];
+    for (i, exact) in exact.iter_mut().enumerate() {
+        off_axis &= (na.0[i] > ON_AXIS * s1.0[i]) & (nb.0[i] > ON_AXIS * s2.0[i]);
+        *exact = ((na.0[i] - nb.0[i]).abs() <= 1e-9 * (na.0[i] + nb.0[i]))
+            & (along_gap.0[i].abs() <= 1e-9 * room.0[i]);
+    }
+    off_axis.then_some(exact)
+}
+
 /// A vector split for turns about one axis `k`: its coordinates `v` in the plane ⟂ `k`
 /// (in an orthonormal basis `(e1, e2)` with `e1 × e2 = k`) and its component `along` `k`.
 /// A turn about `k` turns `v` as a 2-D rotation and keeps `along`; SP1 about `k` needs
@@ -232,6 +252,13 @@ impl Plane {
             v: [self.e1.dot(v), self.e2.dot(v)],
             along: self.k.dot(v),
         }
+    }
+
+    /// The basis `(e1, e2, k)`: the vectors whose coordinates are `(1, 0, 0)`, `(0, 1, 0)`,
+    /// `(0, 0, 1)`.
+    #[inline]
+    pub fn basis(&self) -> [V3; 3] {
+        [self.e1, self.e2, self.k]
     }
 
     /// The vector whose coordinates are `x`.
@@ -494,6 +521,136 @@ impl Sp3 {
         let (n1, n2) = (self.n1, self.n2);
         self.circle
             .solve_terms(0.5 * (n1 + n2 - d * d), 0.5 * (n1 + n2 + d * d), free)
+    }
+}
+
+/// The roots of one circle cut in each of `L` lanes, for a regular pose: a lane has two
+/// distinct exact roots `φ ± d`, or (`exact[i]` false) misses the circle and has the
+/// least-squares root `φ` or `φ + π` (as `d = 0` or `π`, both roots the same). Their
+/// sines and cosines are here (as [`Roots`] has them); their angles wait for one batch of
+/// `atan2` with the rest of the solve: `d = atan2(y, x)`, `θ = wrap(φ ± d)` with the
+/// circle's `φ` ([`Sp4Lanes::phi_sides`]).
+#[derive(Clone, Copy, Debug)]
+pub struct RootLanes<const L: usize> {
+    /// `sin` of `φ + d` and of `φ − d`.
+    pub sin: [Lanes<L>; 2],
+    /// `cos` of `φ + d` and of `φ − d`.
+    pub cos: [Lanes<L>; 2],
+    /// `d = atan2(y, x)`.
+    pub y: Lanes<L>,
+    /// See `y`.
+    pub x: Lanes<L>,
+    /// Lanes with two exact roots (the others one least-squares root).
+    pub exact: [bool; L],
+}
+
+/// The two roots `φ ± d` of a lane, wrapped.
+#[inline(always)]
+pub fn roots_of(phi: f64, d: f64) -> [f64; 2] {
+    [wrap(phi + d), wrap(phi - d)]
+}
+
+/// [`Sp4`] for the branches of a level side by side: one circle `hᵀ rot(k, θ) p`, cut
+/// by `L` planes at once. Its angle `φ` is left to the caller's batch of `atan2`.
+#[derive(Clone, Copy, Debug)]
+pub struct Sp4Lanes {
+    circle: Sp4Circle,
+}
+
+impl Sp4Lanes {
+    /// The circle of `p` about `k`, cut by planes `hᵀ x = d`.
+    #[inline(always)]
+    pub fn new(h: &V3, p: &V3, k: &V3) -> Sp4Lanes {
+        Sp4Lanes {
+            circle: Sp4Circle::terms(h, p, k),
+        }
+    }
+
+    /// The circle's angle: `φ = atan2(y, x)` for `(y, x)` this.
+    #[inline(always)]
+    pub fn phi_sides(&self) -> (f64, f64) {
+        (self.circle.sa, self.circle.ca)
+    }
+
+    /// [`Sp4::solve`] for `L` values of `d` (each computed from terms of size `terms`),
+    /// when each has two distinct exact roots or misses the circle (see [`RootLanes`]);
+    /// `None` for a double root, a circle of radius zero, or any other case the scalar
+    /// solve flags singular or free.
+    #[inline(always)]
+    pub fn solve<const L: usize>(&self, d: Lanes<L>, terms: Lanes<L>) -> Option<RootLanes<L>> {
+        let c = &self.circle;
+        let (ca, sa) = (c.ca, c.sa);
+        let rr = ca * ca + sa * sa;
+        // No angle φ (the scalar solver's `Sp4::new` has none either).
+        if rr <= 0.0 {
+            return None;
+        }
+        let mut b = d - c.axial;
+        let mut disc = Lanes::splat(rr) - b * b;
+        // `cos_case`'s first bound for every lane at once: beyond it, a positive
+        // discriminant is two distinct roots. A lane within it takes the scalar test.
+        let bound = ((terms * terms + c.mag2) * 2.0 + 2.0 * rr) * EPS;
+        let mut clear = true;
+        for i in 0..L {
+            clear &= disc.0[i] > (ROOT_MERGE * bound.0[i]).max(MERGE_RELATIVE * rr);
+        }
+        let mut exact = [true; L];
+        if !clear {
+            for (i, exact) in exact.iter_mut().enumerate() {
+                match cos_case(rr, b.0[i], terms.0[i], c.mag2) {
+                    CosCase::Two { .. } => {}
+                    CosCase::One {
+                        fit: Fit::LeastSquares,
+                    } => {
+                        // The nearest: θ = φ where b ≥ 0, else φ + π (d = 0 or π).
+                        *exact = false;
+                        b.0[i] = if b.0[i] >= 0.0 { 1.0 } else { -1.0 } * sqrt(rr);
+                        disc.0[i] = 0.0;
+                    }
+                    _ => return None,
+                }
+            }
+        }
+        let sd = disc.sqrt();
+        let inv = 1.0 / rr;
+        Some(RootLanes {
+            sin: [(b * sa + sd * ca) * inv, (b * sa - sd * ca) * inv],
+            cos: [(b * ca - sd * sa) * inv, (b * ca + sd * sa) * inv],
+            y: sd,
+            x: b,
+            exact,
+        })
+    }
+}
+
+/// [`Sp3`] for the branches of a level side by side (see [`Sp4Lanes`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Sp3Lanes {
+    circle: Sp4Lanes,
+    n: f64,
+}
+
+impl Sp3Lanes {
+    /// The circle of `p1` about `k`, against spheres about `p2`.
+    #[inline(always)]
+    pub fn new(p1: &V3, p2: &V3, k: &V3) -> Sp3Lanes {
+        Sp3Lanes {
+            circle: Sp4Lanes::new(p2, p1, k),
+            n: p1.norm_squared() + p2.norm_squared(),
+        }
+    }
+
+    /// The circle's angle (see [`Sp4Lanes::phi_sides`]).
+    #[inline(always)]
+    pub fn phi_sides(&self) -> (f64, f64) {
+        self.circle.phi_sides()
+    }
+
+    /// [`Sp3::solve`] for `L` squared distances `d²` (see [`Sp4Lanes::solve`]).
+    #[inline(always)]
+    pub fn solve<const L: usize>(&self, d2: Lanes<L>) -> Option<RootLanes<L>> {
+        let rhs = (Lanes::splat(self.n) - d2) * 0.5;
+        self.circle.solve(rhs, (d2 + self.n) * 0.5)
     }
 }
 

@@ -1,0 +1,344 @@
+//! Closed-form IK of a **regular** pose — every subproblem on the way has two distinct
+//! exact roots: no singular configuration, nothing out of reach — with the branches of
+//! each level side by side in [`Lanes`], and every joint angle from one batch of `atan2`
+//! at the end.
+//!
+//! The derivation is the family's ([`super::families`]): the same subproblems in the same
+//! order, the same decisions (exact, double root, least squares), with what each level
+//! needs of its roots — their sines and cosines, which the subproblems give algebraically
+//! — for all branches at once. The angles are only printed into the solutions, so their
+//! `atan2` wait for the end: eighteen in one pass. Almost every pose is regular; the
+//! family's solver runs this first and, where it returns `None` (some lane singular or
+//! least squares), solves the pose branch by branch as before, with `free` values and
+//! fits. The solutions are those of the branch-by-branch solve, in the same order, to
+//! rounding (`tests/ik_regular.rs` compares them).
+
+use super::geometry::{flat, meet, Geometry, Pose, V3};
+use super::lanes::{Lanes, Vectors};
+use super::solutions::Candidates;
+use super::subproblems::{roots_of, sp1_fit_lanes, sp4, wrap, Fit, Plane, Sp3Lanes, Sp4Lanes};
+use crate::math::fast_atan2_n;
+use core::f64::consts::PI;
+
+/// `v` in the coordinates of `plane` (`e1·v`, `e2·v`, `k·v`).
+#[inline(always)]
+fn coords(plane: &Plane, v: &V3) -> V3 {
+    let s = plane.split(v);
+    V3::new(s.v[0], s.v[1], s.along)
+}
+
+/// `rot(k, σ θ) x` for the angles with cosines `c` and sines `s`, `σ = ±1` (`σ = −1`:
+/// `R(θ)ᵀ x`): the circle of `x` about the unit `k`, in the coordinates `to` gives.
+#[inline(always)]
+fn circle<const L: usize>(
+    to: impl Fn(&V3) -> V3,
+    k: &V3,
+    x: &V3,
+    (c, s): (Lanes<L>, Lanes<L>),
+    sigma: f64,
+) -> Vectors<L> {
+    let a = k * k.dot(x);
+    Vectors::circle(&to(&a), &to(&(x - a)), &to(&k.cross(x)), c, s * sigma)
+}
+
+/// [`circle`] in the coordinates of `plane`.
+#[inline(always)]
+fn turned<const L: usize>(
+    plane: &Plane,
+    k: &V3,
+    x: &V3,
+    angles: (Lanes<L>, Lanes<L>),
+    sigma: f64,
+) -> Vectors<L> {
+    circle(|v| coords(plane, v), k, x, angles, sigma)
+}
+
+/// `rot(k, θ) v` for vectors and angles in lanes (Rodrigues), `k` fixed.
+#[inline(always)]
+fn rotate<const L: usize>(k: &V3, v: &Vectors<L>, (c, s): (Lanes<L>, Lanes<L>)) -> Vectors<L> {
+    let along = v.dot_fixed(k) * (Lanes::splat(1.0) - c);
+    let kv = Vectors::splat(k).cross(v);
+    Vectors {
+        x: v.x * c + kv.x * s + along * k.x,
+        y: v.y * c + kv.y * s + along * k.y,
+        z: v.z * c + kv.z * s + along * k.z,
+    }
+}
+
+/// A turn about the plane's own axis: a 2-D rotation of the in-plane coordinates by the
+/// angles with cosines `c` and sines `s`.
+#[inline(always)]
+fn about_axis<const L: usize>(v: &Vectors<L>, c: Lanes<L>, s: Lanes<L>) -> Vectors<L> {
+    Vectors {
+        x: c * v.x - s * v.y,
+        y: s * v.x + c * v.y,
+        z: v.z,
+    }
+}
+
+/// SP1 in the plane — `rot(k, θ) a = b` with both in the plane's coordinates — up to its
+/// `atan2`: `(y, x)` and which lanes are exact (as `sp1_planar_sides` decides); `None`
+/// where the angle is free in some lane.
+#[inline(always)]
+fn planar_sides<const L: usize>(
+    a: &Vectors<L>,
+    b: &Vectors<L>,
+) -> Option<(Lanes<L>, Lanes<L>, [bool; L])> {
+    let (na, nb) = (a.x * a.x + a.y * a.y, b.x * b.x + b.y * b.y);
+    let exact = sp1_fit_lanes([(na, na + a.z * a.z), (nb, nb + b.z * b.z)], a.z - b.z)?;
+    Some((a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y, exact))
+}
+
+/// SP1 — `rot(k, θ) p1 = p2` — up to its `atan2`, in lanes: `(y, x)` and which lanes are
+/// exact (as `sp1_sides` decides); `None` where the angle is free in some lane.
+#[inline(always)]
+fn sides<const L: usize>(
+    p1: &Vectors<L>,
+    p2: &Vectors<L>,
+    k: &V3,
+) -> Option<(Lanes<L>, Lanes<L>, [bool; L])> {
+    let (a, b) = (p1.off_axis(k), p2.off_axis(k));
+    let lengths = [(a.dot(&a), p1.dot(p1)), (b.dot(&b), p2.dot(p2))];
+    let exact = sp1_fit_lanes(lengths, p1.dot_fixed(k) - p2.dot_fixed(k))?;
+    Some((a.cross(&b).dot_fixed(k), a.dot(&b), exact))
+}
+
+/// `(cos, sin)` of the angles `atan2(y, x)`, without the angles.
+#[inline(always)]
+fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
+    let r = (x * x + y * y).sqrt();
+    (x / r, y / r)
+}
+
+/// **h2 ∥ h3 ∥ h4, h5 ∩ h6** with an orthogonal wrist (`WristPair::HalfTurn`), for a
+/// regular pose: the steps of `families::three_parallel_two_intersecting`, level by level
+/// — the two shoulders (q1), then per shoulder q5's first root, θ and q6 (the second root
+/// by half turns), then the four elbows' SP3, then the eight q2. `None` where a level is
+/// not regular in some lane.
+pub fn three_parallel_two_intersecting(g: &Geometry<6>, pose: &Pose) -> Option<Candidates<6, 8>> {
+    let c56 = meet(g, 4, 5);
+    let r06 = pose.r * g.r_tool.transpose();
+    let [h1, h2, h3, h4, h5, h6] = g.h;
+    let (s3, s4) = (h3.dot(&h2).signum(), h4.dot(&h2).signum());
+    let (p12, p23, p34, p45) = (
+        g.p[1] - g.p[0],
+        g.p[2] - g.p[1],
+        g.p[3] - g.p[2],
+        c56 - g.p[3],
+    );
+    let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
+    // 2. q1 — SP4 (one pair of roots: no lanes yet).
+    let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34 + p45)), 0.0);
+    if t1.n != 2 || t1.fit != Fit::Exact {
+        return None;
+    }
+    let [a, b] = t1.angles;
+    let q1 = (Lanes([a.cos, b.cos]), Lanes([a.sin, b.sin]));
+    // The shoulders' lanes: R1ᵀ of what the rest needs of the target, in the coordinates
+    // of the plane ⟂ h2 (turns about h2 ∥ h3 ∥ h4 are 2-D rotations there).
+    let plane = Plane::new(&h2);
+    let arm = turned(&plane, &h1, &p16, q1, -1.0) - Vectors::splat(&coords(&plane, &p12));
+    let t5 = turned(&plane, &h1, &(r06 * h5), q1, -1.0);
+    let t6 = turned(&plane, &h1, &(r06 * h6), q1, -1.0);
+    // 3. q5 — SP4: h2ᵀ rot(h5, q5) h6 = h2ᵀ R1ᵀ R06 h6.
+    let wrist5 = Sp4Lanes::new(&h2, &h6, &h5);
+    let q5 = wrist5.solve(t6.z, t6.z.map(f64::abs))?;
+    if q5.exact.contains(&false) {
+        return None;
+    }
+    let q5_first = (q5.cos[0], q5.sin[0]);
+    // 4. θ — SP1 in the plane: rot(h2, θ) R5 h6 = R1ᵀ R06 h6.
+    let r5_h6 = turned(&plane, &h5, &h6, q5_first, 1.0);
+    let (theta_y, theta_x, theta_exact) = planar_sides(&r5_h6, &t6)?;
+    let (ct, st) = direction(theta_y, theta_x);
+    // 7. q6 — SP1: rot(h6, q6) h5 = R5ᵀ R14ᵀ (R1ᵀ R06 h5), with R14 = rot(h2, θ); with
+    // a = h5 off h6, its sides are `(R5 (h6 × a))·x`, `(R5 a)·x` for x = R14ᵀ R1ᵀ R06 h5.
+    let x = about_axis(&t5, ct, -st);
+    let a6 = flat(&h6, &h5);
+    let (r5_a6, r5_c6) = (
+        turned(&plane, &h5, &a6, q5_first, 1.0),
+        turned(&plane, &h5, &h6.cross(&a6), q5_first, 1.0),
+    );
+    let (q6_y, q6_x, along) = (r5_c6.dot(&x), r5_a6.dot(&x), r5_h6.dot(&x));
+    let n5 = t5.dot(&t5);
+    let q6_exact = sp1_fit_lanes(
+        [
+            (
+                Lanes::splat(a6.norm_squared()),
+                Lanes::splat(h5.norm_squared()),
+            ),
+            (n5 - along * along, n5),
+        ],
+        Lanes::splat(h6.dot(&h5)) - along,
+    )?;
+    if theta_exact.contains(&false) || q6_exact.contains(&false) {
+        return None;
+    }
+    // 8. q5's second root: (θ + π, q6 + π). Four branches (q1, q5) from here on.
+    let (ct4, st4): (Lanes<4>, Lanes<4>) = (Lanes::interleave(ct, -ct), Lanes::interleave(st, -st));
+    // 5. q3 — SP3 in the plane: ‖p23 + rot(h3, q3) p34‖ = ‖arm − rot(h2, θ) p45‖; a
+    // branch whose wrist centre is out of the elbow's reach has one least-squares q3.
+    let p45_ = Vectors::splat(&coords(&plane, &p45));
+    let reach = arm.twice::<4>() - about_axis(&p45_, ct4, st4);
+    let elbow = Sp3Lanes::new(&flat(&h2, &p34), &flat(&h2, &(-p23)), &h3);
+    let q3 = elbow.solve(reach.x * reach.x + reach.y * reach.y)?;
+    // 6. q2 — SP1 in the plane: rot(h2, q2) (p23 + R3 p34) = reach. Eight branches.
+    let (c3, s3_): (Lanes<8>, Lanes<8>) = (
+        Lanes::interleave(q3.cos[0], q3.cos[1]),
+        Lanes::interleave(q3.sin[0], q3.sin[1]),
+    );
+    let (p23_, p34_) = (coords(&plane, &p23), coords(&plane, &p34));
+    let arm3 = about_axis(&Vectors::splat(&p34_), c3, s3_ * s3) + Vectors::splat(&p23_);
+    let (q2_y, q2_x, q2_exact) = planar_sides(&arm3, &reach.twice::<8>())?;
+    // Every angle in one pass: q5's d (2), θ (2), q6 (2), q3's d (4), q2 (8), and the
+    // angles φ of the two circles cut in lanes.
+    let mut ys = [0.0; 20];
+    let mut xs = [0.0; 20];
+    for (at, (y, x)) in [
+        (0, (q5.y, q5.x)),
+        (2, (theta_y, theta_x)),
+        (4, (q6_y, q6_x)),
+    ] {
+        ys[at..at + 2].copy_from_slice(&y.0);
+        xs[at..at + 2].copy_from_slice(&x.0);
+    }
+    ys[6..10].copy_from_slice(&q3.y.0);
+    xs[6..10].copy_from_slice(&q3.x.0);
+    ys[10..18].copy_from_slice(&q2_y.0);
+    xs[10..18].copy_from_slice(&q2_x.0);
+    (ys[18], xs[18]) = wrist5.phi_sides();
+    (ys[19], xs[19]) = elbow.phi_sides();
+    let t = fast_atan2_n(ys, xs);
+    let mut out = Candidates::default();
+    for (i, q1) in [a.theta, b.theta].into_iter().enumerate() {
+        let [q5_plus, q5_minus] = roots_of(t[18], t[i]);
+        let (theta, q6) = (t[2 + i], t[4 + i]);
+        let wrists = [
+            (theta, q5_plus, q6),
+            (wrap(theta + PI), q5_minus, wrap(q6 + PI)),
+        ];
+        for (k, (theta, q5, q6)) in wrists.into_iter().enumerate() {
+            let j = 2 * i + k;
+            let roots = if q3.exact[j] { 2 } else { 1 };
+            for (r, q3_) in roots_of(t[19], t[6 + j])
+                .into_iter()
+                .take(roots)
+                .enumerate()
+            {
+                let q2 = t[10 + 2 * j + r];
+                let q4 = wrap(s4 * (theta - q2 - s3 * q3_));
+                let fit = if q3.exact[j] && q2_exact[2 * j + r] {
+                    Fit::Exact
+                } else {
+                    Fit::LeastSquares
+                };
+                out.push([q1, q2, q3_, q4, q5, q6], fit);
+            }
+        }
+    }
+    Some(out)
+}
+
+/// **Spherical wrist, h2 ∥ h3** with an orthogonal wrist (`WristPair::HalfTurn`), for a
+/// regular pose: the steps of `families::spherical_two_parallel`, level by level — the
+/// two shoulders (q1), their elbows' SP3, the four q2, then the four wrists' q5 (first
+/// root), q4 and q6 (the second root by half turns). `None` where a level is not regular
+/// in some lane.
+pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose) -> Option<Candidates<6, 8>> {
+    let w0 = meet(g, 3, 4);
+    let r06 = pose.r * g.r_tool.transpose();
+    let [h1, h2, h3, h4, h5, h6] = g.h;
+    let s3 = h3.dot(&h2).signum();
+    let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
+    // 1. The wrist centre, from joint 1.
+    let p16 = pose.p - r06 * (g.p_tool - w0) - g.p[0];
+    // 2. q1 — SP4 (one pair of roots: no lanes yet).
+    let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), 0.0);
+    if t1.n != 2 || t1.fit != Fit::Exact {
+        return None;
+    }
+    let [a, b] = t1.angles;
+    let q1 = (Lanes([a.cos, b.cos]), Lanes([a.sin, b.sin]));
+    // The shoulders' lanes, in the coordinates of the plane ⟂ h2.
+    let plane = Plane::new(&h2);
+    let to_plane = |v: &V3| coords(&plane, v);
+    let v = turned(&plane, &h1, &p16, q1, -1.0) - Vectors::splat(&to_plane(&p12));
+    let x6 = turned(&plane, &h1, &(r06 * h6), q1, -1.0);
+    // 3. q3 — SP3 in the plane: ‖p23 + rot(h3, q3) p34‖ = ‖R1ᵀ p16 − p12‖; a shoulder
+    // whose wrist centre is out of the elbow's reach has one least-squares q3.
+    let elbow = Sp3Lanes::new(&flat(&h3, &p34), &flat(&h3, &(-p23)), &h3);
+    let q3 = elbow.solve(v.x * v.x + v.y * v.y)?;
+    // 4. q2 — SP1 in the plane: rot(h2, q2) (p23 + R3 p34) = R1ᵀ p16 − p12. Four
+    // branches (q1, q3) from here on.
+    let (c3, s3_): (Lanes<4>, Lanes<4>) = (
+        Lanes::interleave(q3.cos[0], q3.cos[1]),
+        Lanes::interleave(q3.sin[0], q3.sin[1]),
+    );
+    let p34_ = Vectors::splat(&to_plane(&p34));
+    let arm3 = about_axis(&p34_, c3, s3_ * s3) + Vectors::splat(&to_plane(&p23));
+    let (q2_y, q2_x, q2_exact) = planar_sides(&arm3, &v.twice::<4>())?;
+    let (c2, s2) = direction(q2_y, q2_x);
+    // R2 R3 = rot(h2, q2 + σ q3).
+    let (c23, s23) = (c2 * c3 - s2 * s3_ * s3, s2 * c3 + c2 * s3_ * s3);
+    // 5. The wrist: R36 h6 = R23ᵀ R1ᵀ R06 h6 (in the plane's coordinates) and R36ᵀ h4 =
+    // R06ᵀ R1 R23 h4 (in the base frame).
+    let r36_h6 = about_axis(&x6.twice::<4>(), c23, -s23);
+    let h4_ = about_axis(&Vectors::splat(&to_plane(&h4)), c23, s23);
+    let [e1, e2, k] = plane.basis();
+    let h4_23 = Vectors {
+        x: h4_.x * e1.x + h4_.y * e2.x + h4_.z * k.x,
+        y: h4_.x * e1.y + h4_.y * e2.y + h4_.z * k.y,
+        z: h4_.x * e1.z + h4_.y * e2.z + h4_.z * k.z,
+    };
+    let (c1, s1) = q1;
+    let r36t_h4 = rotate(&h1, &h4_23, (c1.twice(), s1.twice())).tr_mul_by(&r06);
+    // q5 — SP4: h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.
+    let h4p = to_plane(&h4);
+    let wrist5 = Sp4Lanes::new(&h4, &h6, &h5);
+    let d5 = r36_h6.dot_fixed(&h4p);
+    let q5 = wrist5.solve(d5, d5.map(f64::abs))?;
+    if q5.exact.contains(&false) {
+        return None;
+    }
+    let q5_first = (q5.cos[0], q5.sin[0]);
+    // q4 — SP1: rot(h4, q4) R5 h6 = R36 h6; q6 — SP1: rot(h6, q6) R36ᵀ h4 = R5ᵀ h4.
+    let r5_h6 = turned(&plane, &h5, &h6, q5_first, 1.0);
+    let (q4_y, q4_x, q4_exact) = sides(&r5_h6, &r36_h6, &h4p)?;
+    let r5t_h4 = circle(|v| *v, &h5, &h4, q5_first, -1.0);
+    let (q6_y, q6_x, q6_exact) = sides(&r36t_h4, &r5t_h4, &h6)?;
+    // Every angle in one pass: q3's d (2), q2 (4), q5's d (4), q4 (4), q6 (4), and the
+    // angles φ of the two circles cut in lanes.
+    let mut ys = [0.0; 20];
+    let mut xs = [0.0; 20];
+    ys[..2].copy_from_slice(&q3.y.0);
+    xs[..2].copy_from_slice(&q3.x.0);
+    for (at, (y, x)) in [
+        (2, (q2_y, q2_x)),
+        (6, (q5.y, q5.x)),
+        (10, (q4_y, q4_x)),
+        (14, (q6_y, q6_x)),
+    ] {
+        ys[at..at + 4].copy_from_slice(&y.0);
+        xs[at..at + 4].copy_from_slice(&x.0);
+    }
+    (ys[18], xs[18]) = elbow.phi_sides();
+    (ys[19], xs[19]) = wrist5.phi_sides();
+    let t = fast_atan2_n(ys, xs);
+    let mut out = Candidates::default();
+    for (i, q1) in [a.theta, b.theta].into_iter().enumerate() {
+        let roots = if q3.exact[i] { 2 } else { 1 };
+        for (r, q3_) in roots_of(t[18], t[i]).into_iter().take(roots).enumerate() {
+            let j = 2 * i + r;
+            let [q5_plus, q5_minus] = roots_of(t[19], t[6 + j]);
+            let (q2, q4, q6) = (t[2 + j], t[10 + j], t[14 + j]);
+            let fit = if q3.exact[i] && q2_exact[j] && q4_exact[j] && q6_exact[j] {
+                Fit::Exact
+            } else {
+                Fit::LeastSquares
+            };
+            out.push([q1, q2, q3_, q4, q5_plus, q6], fit);
+            out.push([q1, q2, q3_, wrap(q4 + PI), q5_minus, wrap(q6 + PI)], fit);
+        }
+    }
+    Some(out)
+}

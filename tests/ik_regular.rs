@@ -1,0 +1,265 @@
+//! The regular-pose solvers in lanes (`kinegen::ik::regular`) against the branch-by-branch
+//! solvers of their families, which `ik` falls back to: on the robots of `robots/` in the
+//! two families and on random variations of the UR5 and the PUMA 560 (link lengths of
+//! either sign, base and tool frames), with random configurations (fixed seeds), 20 % of
+//! the joints snapped to −π/2, 0 or π/2 (singular poses, which the lanes must hand back),
+//! and every fifth pose moved 0.3 m (branches out of reach: least-squares lanes).
+//!
+//! Wherever the lanes solve a pose they must give the same candidates, in the same order,
+//! with the same fits, and joint values equal to rounding; and they must solve the
+//! regular poses — a fallback that always ran would pass the comparison unseen.
+
+use core::f64::consts::{FRAC_PI_2, PI};
+use kinegen::ik::families::{self, WristPair};
+use kinegen::ik::geometry::{rot, Geometry, Pose, V3};
+use kinegen::ik::regular;
+use kinegen::ik::solutions::Candidates;
+use kinegen::ik::subproblems::wrap;
+use kinegen::ik::XorShift64;
+use kinegen_robots::*;
+
+/// Poses per geometry.
+const POSES: usize = 1_000;
+
+/// The lanes and the branch-by-branch solve compute the same subproblems with the same
+/// formulas, grouped differently: their joint values differ by rounding, amplified by the
+/// conditioning of the pose. At every candidate of this file where the Jacobian's
+/// smallest singular value is at least [`WELL_CONDITIONED`], the difference measured was
+/// below 1e-13.
+const SAME: f64 = 1e-12;
+
+/// Below this smallest singular value (of the 6×6 Jacobian, by central differences) a
+/// candidate is near a singular configuration: rounding errors of 1e-16 grow by up to
+/// `1 / σ²` at a double root, and the subproblems' relative tests (SP1's lengths agree to
+/// 1e-9) can go either way between the two solves. There the joints must still agree to
+/// [`NEAR_SINGULAR_SAME`] (the largest difference measured was 2.1e-11 here, and 2.9e-9
+/// at σ = 1e-11 with twice these poses),
+/// and a fit may differ between exact and least squares (which `finish` then settles by
+/// the forward kinematics).
+const WELL_CONDITIONED: f64 = 1e-2;
+
+/// See [`WELL_CONDITIONED`].
+const NEAR_SINGULAR_SAME: f64 = 1e-6;
+
+/// The smallest singular value of the geometry's 6×6 Jacobian at `q` (central
+/// differences of the pose: position, and the rotation's change as an axis).
+fn sigma_min(g: &Geometry<6>, q: &[f64; 6]) -> f64 {
+    let step = 1e-6;
+    let mut j = nalgebra::Matrix6::<f64>::zeros();
+    for c in 0..6 {
+        let (mut qp, mut qm) = (*q, *q);
+        qp[c] += step;
+        qm[c] -= step;
+        let (a, b) = (g.fk(&qp), g.fk(&qm));
+        let dp = (a.p - b.p) / (2.0 * step);
+        // The angular velocity: the skew part of dR Rᵀ.
+        let w = (a.r - b.r) / (2.0 * step) * g.fk(q).r.transpose();
+        let dw = V3::new(
+            w[(2, 1)] - w[(1, 2)],
+            w[(0, 2)] - w[(2, 0)],
+            w[(1, 0)] - w[(0, 1)],
+        ) * 0.5;
+        for r in 0..3 {
+            j[(r, c)] = dp[r];
+            j[(r + 3, c)] = dw[r];
+        }
+    }
+    j.singular_values().min()
+}
+
+type Lanes = fn(&Geometry<6>, &Pose) -> Option<Candidates<6, 8>>;
+type ByBranch = fn(&Geometry<6>, &Pose, &[f64; 6], WristPair) -> Candidates<6, 8>;
+
+fn configuration(rng: &mut XorShift64) -> [f64; 6] {
+    core::array::from_fn(|_| {
+        if rng.next_f64() < 0.2 {
+            [-FRAC_PI_2, 0.0, FRAC_PI_2][(rng.next_u64() % 3) as usize]
+        } else {
+            PI * (2.0 * rng.next_f64() - 1.0)
+        }
+    })
+}
+
+fn unit(rng: &mut XorShift64) -> V3 {
+    V3::new(
+        rng.next_f64() - 0.5,
+        rng.next_f64() - 0.5,
+        rng.next_f64() - 0.5,
+    )
+    .normalize()
+}
+
+/// The geometry in another base frame, with another tool.
+fn moved(g: &Geometry<6>, rng: &mut XorShift64) -> Geometry<6> {
+    let r = rot(&unit(rng), PI * rng.next_f64());
+    let t = unit(rng) * 0.3;
+    let tool = rot(&unit(rng), PI * rng.next_f64());
+    Geometry {
+        h: g.h.map(|h| r * h),
+        p: g.p.map(|p| r * p + t),
+        prismatic: g.prismatic,
+        r_tool: r * g.r_tool * tool,
+        p_tool: r * g.p_tool + t + r * g.r_tool * unit(rng) * 0.1,
+    }
+}
+
+/// Compares the lanes with the branch-by-branch solve on `POSES` poses of `g`; panics
+/// where they disagree, and where the lanes leave too many regular poses to the fallback.
+fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), seed: u64) {
+    let mut rng = XorShift64::new(seed);
+    let (mut solved, mut candidates, mut near_singular) = (0, 0, 0);
+    for n in 0..POSES {
+        let mut pose = g.fk(&configuration(&mut rng));
+        if n % 5 == 4 {
+            pose.p += unit(&mut rng) * 0.3;
+        }
+        let Some(fast) = lanes(g, &pose) else {
+            continue;
+        };
+        solved += 1;
+        let slow = by_branch(g, &pose, &[0.0; 6], WristPair::HalfTurn);
+        let (fast, slow) = (fast.as_slice(), slow.as_slice());
+        assert_eq!(
+            fast.len(),
+            slow.len(),
+            "{name}, pose {n}: {fast:?} {slow:?}"
+        );
+        candidates += fast.len();
+        for (a, b) in fast.iter().zip(slow) {
+            let gap = (0..6)
+                .map(|i| wrap(a.q[i] - b.q[i]).abs())
+                .fold(0.0, f64::max);
+            if gap <= SAME && a.fit == b.fit {
+                continue;
+            }
+            // Only near a singular configuration may they differ more.
+            let sigma = sigma_min(g, &b.q);
+            assert!(
+                sigma < WELL_CONDITIONED && gap <= NEAR_SINGULAR_SAME,
+                "{name}, pose {n}: {gap:e} (σ_min {sigma:e})\n{a:?}\n{b:?}"
+            );
+            near_singular += 1;
+        }
+    }
+    println!(
+        "{name}: the lanes solved {solved} of {POSES} poses; {near_singular} of {candidates} \
+         candidates near a singular configuration differ by more than {SAME:e}"
+    );
+    // Snapped joints make about a quarter of the poses singular (handed back to the
+    // branch-by-branch solve); the rest are regular and must take the lanes.
+    assert!(
+        solved * 10 >= POSES * 6,
+        "{name}: the lanes solved {solved} of {POSES}"
+    );
+    // Near a singular configuration only by chance: a small share.
+    assert!(
+        near_singular * 20 <= candidates,
+        "{name}: {near_singular} of {candidates}"
+    );
+}
+
+#[test]
+fn universal_robots() {
+    let robots = [
+        ("UR3", Ur3::default().ik_geometry()),
+        ("UR5", Ur5::default().ik_geometry()),
+        ("UR10", Ur10::default().ik_geometry()),
+        ("UR5e", Ur5e::default().ik_geometry()),
+        ("UR10e", Ur10e::default().ik_geometry()),
+    ];
+    for (seed, (name, g)) in robots.iter().enumerate() {
+        compare(
+            name,
+            g,
+            three_parallel_two_intersecting(),
+            100 + seed as u64,
+        );
+    }
+}
+
+#[test]
+fn spherical_wrist_robots() {
+    let robots = [
+        ("PUMA 560", Puma560::default().ik_geometry()),
+        ("KR 6 R900", KukaKr6R900::default().ik_geometry()),
+        ("IRB 120", AbbIrb120::default().ik_geometry()),
+        ("IRB 140", AbbIrb140::default().ik_geometry()),
+    ];
+    for (seed, (name, g)) in robots.iter().enumerate() {
+        compare(name, g, spherical_two_parallel(), 200 + seed as u64);
+    }
+}
+
+fn length(rng: &mut XorShift64) -> f64 {
+    let x = 0.05 + 0.5 * rng.next_f64();
+    if rng.next_f64() < 0.5 {
+        -x
+    } else {
+        x
+    }
+}
+
+#[test]
+fn random_universal_robots() {
+    let mut rng = XorShift64::new(7);
+    for table in 0..20 {
+        let robot = Ur5 {
+            d1: length(&mut rng),
+            a2: length(&mut rng),
+            a3: length(&mut rng),
+            d4: length(&mut rng),
+            d5: length(&mut rng),
+            d6: length(&mut rng),
+        };
+        let g = moved(&robot.ik_geometry(), &mut rng);
+        let name = format!("UR-like table {table}");
+        compare(&name, &g, three_parallel_two_intersecting(), 300 + table);
+    }
+}
+
+#[test]
+fn random_spherical_wrist_robots() {
+    let mut rng = XorShift64::new(8);
+    for table in 0..20 {
+        let robot = Puma560 {
+            a2: length(&mut rng),
+            a3: length(&mut rng),
+            d3: length(&mut rng),
+            d4: length(&mut rng),
+        };
+        let g = moved(&robot.ik_geometry(), &mut rng);
+        let name = format!("PUMA-like table {table}");
+        compare(&name, &g, spherical_two_parallel(), 400 + table);
+    }
+}
+
+fn three_parallel_two_intersecting() -> (Lanes, ByBranch) {
+    (
+        regular::three_parallel_two_intersecting,
+        families::three_parallel_two_intersecting_by_branch,
+    )
+}
+
+fn spherical_two_parallel() -> (Lanes, ByBranch) {
+    (
+        regular::spherical_two_parallel,
+        families::spherical_two_parallel_by_branch,
+    )
+}
+
+/// The generated `ik` goes through the lanes: a pose of each family, solved by the
+/// lanes, gives the generated solutions (after `finish`) of the lanes' candidates.
+#[test]
+fn generated_ik_takes_the_lanes() {
+    let robot = Ur5::default();
+    let q = [0.3, -1.1, 1.4, -0.6, 0.9, 2.0];
+    let pose = robot.fk(&q);
+    let lanes =
+        regular::three_parallel_two_intersecting(&robot.ik_geometry(), &Pose::from_matrix(&pose))
+            .expect("a regular pose");
+    let solutions = robot.ik(&pose);
+    assert_eq!(solutions.len(), lanes.as_slice().len());
+    for (s, c) in solutions.iter().zip(lanes.as_slice()) {
+        assert_eq!(s.q, c.q);
+    }
+}
