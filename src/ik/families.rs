@@ -156,10 +156,9 @@ pub fn spherical_two_parallel(
     free: &[f64; 6],
     pair: WristPair,
 ) -> Candidates<6, 8> {
-    if pair == WristPair::HalfTurn {
-        if let Some(out) = regular::spherical_two_parallel(g, pose) {
-            return out;
-        }
+    let mut out = Candidates::default();
+    if pair == WristPair::HalfTurn && regular::spherical_two_parallel(g, pose, &mut out).is_some() {
+        return out;
     }
     spherical_two_parallel_by_branch(g, pose, free, pair)
 }
@@ -319,10 +318,11 @@ pub fn three_parallel_two_intersecting(
     free: &[f64; 6],
     pair: WristPair,
 ) -> Candidates<6, 8> {
-    if pair == WristPair::HalfTurn {
-        if let Some(out) = regular::three_parallel_two_intersecting(g, pose) {
-            return out;
-        }
+    let mut out = Candidates::default();
+    if pair == WristPair::HalfTurn
+        && regular::three_parallel_two_intersecting(g, pose, &mut out).is_some()
+    {
+        return out;
     }
     three_parallel_two_intersecting_by_branch(g, pose, free, pair)
 }

@@ -113,9 +113,14 @@ fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
 /// **h2 ∥ h3 ∥ h4, h5 ∩ h6** with an orthogonal wrist (`WristPair::HalfTurn`), for a
 /// regular pose: the steps of `families::three_parallel_two_intersecting`, level by level
 /// — the two shoulders (q1), then per shoulder q5's first root, θ and q6 (the second root
-/// by half turns), then the four elbows' SP3, then the eight q2. `None` where a level is
-/// not regular in some lane.
-pub fn three_parallel_two_intersecting(g: &Geometry<6>, pose: &Pose) -> Option<Candidates<6, 8>> {
+/// by half turns), then the four elbows' SP3, then the eight q2. The candidates go to
+/// `out` (empty before, and left untouched unless the pose is regular); `None` where a
+/// level is not regular in some lane.
+pub fn three_parallel_two_intersecting(
+    g: &Geometry<6>,
+    pose: &Pose,
+    out: &mut Candidates<6, 8>,
+) -> Option<()> {
     let c56 = meet(g, 4, 5);
     let r06 = pose.r * g.r_tool.transpose();
     let [h1, h2, h3, h4, h5, h6] = g.h;
@@ -209,7 +214,6 @@ pub fn three_parallel_two_intersecting(g: &Geometry<6>, pose: &Pose) -> Option<C
     (ys[18], xs[18]) = wrist5.phi_sides();
     (ys[19], xs[19]) = elbow.phi_sides();
     let t = fast_atan2_n(ys, xs);
-    let mut out = Candidates::default();
     for (i, q1) in [a.theta, b.theta].into_iter().enumerate() {
         let [q5_plus, q5_minus] = roots_of(t[18], t[i]);
         let (theta, q6) = (t[2 + i], t[4 + i]);
@@ -236,15 +240,20 @@ pub fn three_parallel_two_intersecting(g: &Geometry<6>, pose: &Pose) -> Option<C
             }
         }
     }
-    Some(out)
+    Some(())
 }
 
 /// **Spherical wrist, h2 ∥ h3** with an orthogonal wrist (`WristPair::HalfTurn`), for a
 /// regular pose: the steps of `families::spherical_two_parallel`, level by level — the
 /// two shoulders (q1), their elbows' SP3, the four q2, then the four wrists' q5 (first
-/// root), q4 and q6 (the second root by half turns). `None` where a level is not regular
-/// in some lane.
-pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose) -> Option<Candidates<6, 8>> {
+/// root), q4 and q6 (the second root by half turns). The candidates go to `out` (empty
+/// before, and left untouched unless the pose is regular); `None` where a level is not
+/// regular in some lane.
+pub fn spherical_two_parallel(
+    g: &Geometry<6>,
+    pose: &Pose,
+    out: &mut Candidates<6, 8>,
+) -> Option<()> {
     let w0 = meet(g, 3, 4);
     let r06 = pose.r * g.r_tool.transpose();
     let [h1, h2, h3, h4, h5, h6] = g.h;
@@ -324,7 +333,6 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose) -> Option<Candidates
     (ys[18], xs[18]) = elbow.phi_sides();
     (ys[19], xs[19]) = wrist5.phi_sides();
     let t = fast_atan2_n(ys, xs);
-    let mut out = Candidates::default();
     for (i, q1) in [a.theta, b.theta].into_iter().enumerate() {
         let roots = if q3.exact[i] { 2 } else { 1 };
         for (r, q3_) in roots_of(t[18], t[i]).into_iter().take(roots).enumerate() {
@@ -340,5 +348,5 @@ pub fn spherical_two_parallel(g: &Geometry<6>, pose: &Pose) -> Option<Candidates
             out.push([q1, q2, q3_, wrap(q4 + PI), q5_minus, wrap(q6 + PI)], fit);
         }
     }
-    Some(out)
+    Some(())
 }
