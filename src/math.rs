@@ -553,14 +553,20 @@ pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
     }
     #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
     {
-        let mut any_special = false;
+        // Per lane `0 · n + 0 · d` (NaN where n or d is NaN or infinite) and `d`, folded
+        // lane by lane: no branch per lane (a special lane's arithmetic is discarded).
+        let (mut probe, mut least) = ([0.0; L], [f64::INFINITY; L]);
         for i in 0..L {
-            let (n, d, swap, special) = atan2_octant(y[i], x[i]);
-            // `|`, not `if`: no branch per lane (a special lane's arithmetic is discarded).
-            any_special |= special;
+            let (n, d, swap, _) = atan2_octant(y[i], x[i]);
+            probe[i] = 0.0 * n + 0.0 * d;
+            least[i] = d;
             r[i] = atan2_in_octant(y[i], x[i], n, d, swap);
         }
-        if any_special {
+        let probe = probe.iter().fold(0.0, |a, p| a + p);
+        let least = least
+            .iter()
+            .fold(f64::INFINITY, |a, &d| if d < a { d } else { a });
+        if !(probe == 0.0 && least > 0.0) {
             for i in 0..L {
                 if atan2_octant(y[i], x[i]).3 {
                     r[i] = atan2(y[i], x[i]);

@@ -89,3 +89,55 @@ fn special_values_are_ieee() {
     assert!(fast_atan2(f64::NAN, 1.0).is_nan());
     assert!(fast_atan2(1.0, f64::NAN).is_nan());
 }
+
+/// `fast_atan2_n` gives each lane `fast_atan2`'s bits, whichever lanes beside it are
+/// special (zeros, infinities, NaN, subnormals): the special lanes go through the full
+/// `atan2` after one check for all lanes, and must neither leak into nor miss a lane.
+#[test]
+fn lanes_are_fast_atan2_lane_by_lane() {
+    let inf = f64::INFINITY;
+    let mut rng = XorShift64::new(0x1a2e5);
+    let special = [
+        (0.0, 0.0),
+        (-0.0, -0.0),
+        (0.0, -1.0),
+        (1.0, inf),
+        (inf, inf),
+        (-inf, 2.0),
+        (f64::NAN, 1.0),
+        (1.0, f64::NAN),
+        (1e-320, 1.0),
+        (-1e-320, -1e-310),
+    ];
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+    for round in 0..200 {
+        let mut y = [0.0; 20];
+        let mut x = [0.0; 20];
+        for i in 0..20 {
+            (y[i], x[i]) = (signed(&mut rng), signed(&mut rng));
+        }
+        // None, then one or two special lanes at varying places.
+        if round > 0 {
+            let k = round % special.len();
+            (y[round % 20], x[round % 20]) = special[k];
+            if round % 3 == 0 {
+                (y[(round * 7) % 20], x[(round * 7) % 20]) = special[(k + 3) % special.len()];
+            }
+        }
+        let lanes = kinegen::math::fast_atan2_n(y, x);
+        let pair = kinegen::math::fast_atan2_n([y[0], y[1]], [x[0], x[1]]);
+        for i in 0..20 {
+            let want = fast_atan2(y[i], x[i]);
+            assert!(
+                same(lanes[i], want),
+                "lane {i}: atan2({:e}, {:e}) = {:e}, not {want:e}",
+                y[i],
+                x[i],
+                lanes[i]
+            );
+        }
+        for i in 0..2 {
+            assert!(same(pair[i], fast_atan2(y[i], x[i])), "pair lane {i}");
+        }
+    }
+}

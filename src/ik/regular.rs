@@ -106,8 +106,8 @@ fn sides<const L: usize>(
 /// `(cos, sin)` of the angles `atan2(y, x)`, without the angles.
 #[inline(always)]
 fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
-    let r = (x * x + y * y).sqrt();
-    (x / r, y / r)
+    let inv = Lanes::splat(1.0) / (x * x + y * y).sqrt();
+    (x * inv, y * inv)
 }
 
 /// **h2 ∥ h3 ∥ h4, h5 ∩ h6** with an orthogonal wrist (`WristPair::HalfTurn`), for a

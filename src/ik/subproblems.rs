@@ -148,7 +148,11 @@ fn sp1_fit(lengths: [(f64, f64); 2], along_gap: impl FnOnce() -> f64) -> Option<
     if na <= ON_AXIS * s1 || nb <= ON_AXIS * s2 {
         return None;
     }
-    let same = (na - nb).abs() <= 1e-9 * (na + nb) && along_gap().abs() <= 1e-9 * sqrt(s1 + s2);
+    // |gap| ≤ 1e-9 √(s1 + s2), squared (no square root).
+    let same = (na - nb).abs() <= 1e-9 * (na + nb) && {
+        let gap = along_gap();
+        gap * gap <= 1e-18 * (s1 + s2)
+    };
     Some(if same { Fit::Exact } else { Fit::LeastSquares })
 }
 
@@ -160,13 +164,14 @@ pub(crate) fn sp1_fit_lanes<const L: usize>(
     along_gap: Lanes<L>,
 ) -> Option<[bool; L]> {
     let (s1, s2) = (n1.map(scale), n2.map(scale));
-    let room = (s1 + s2).sqrt();
+    let room = (s1 + s2) * 1e-18;
+    let gap2 = along_gap * along_gap;
     let mut off_axis = true;
     let mut exact = [true; L];
     for (i, exact) in exact.iter_mut().enumerate() {
         off_axis &= (na.0[i] > ON_AXIS * s1.0[i]) & (nb.0[i] > ON_AXIS * s2.0[i]);
-        *exact = ((na.0[i] - nb.0[i]).abs() <= 1e-9 * (na.0[i] + nb.0[i]))
-            & (along_gap.0[i].abs() <= 1e-9 * room.0[i]);
+        *exact =
+            ((na.0[i] - nb.0[i]).abs() <= 1e-9 * (na.0[i] + nb.0[i])) & (gap2.0[i] <= room.0[i]);
     }
     off_axis.then_some(exact)
 }
