@@ -232,37 +232,27 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     // exactly.
     let mut unchecked = [false; K];
     let mut any_unchecked = false;
-    // Every joint revolute with limits that hold a whole turn (a constant where `limits`
-    // is the robot's `LIMITS`): a candidate within (−π, π] everywhere, as the solvers'
-    // angles almost always are, is wrapped and within its limits as it is.
-    let whole_turns = (0..N).all(|i| revolute[i] && limits[i][0] <= -PI && limits[i][1] >= PI);
     for c in candidates.as_slice() {
-        let mut q = c.q;
-        // One pass; the flags with `&=`, not `&&`. (Taking `within_limits` from
-        // `into_limits`, which compared the value already, measured 41 instructions more
-        // per PUMA 560 `ik`: the comparison stays.)
-        let (mut finite, mut within_limits) = (true, true);
-        let wrapped = q.iter().fold(true, |all, &t| all & (t > -PI) & (t <= PI));
-        for i in 0..N {
-            if whole_turns && wrapped {
-                break;
-            }
-            let [lo, hi] = limits[i];
-            if revolute[i] && lo <= -PI && hi >= PI {
-                // Limits that hold a whole turn (a constant test where `limits` is the
-                // robot's `LIMITS`): wrapped into (−π, π], a value is within them, and
-                // only a non-finite one comes out as NaN.
-                q[i] = wrap(q[i]);
-                finite &= !q[i].is_nan();
-                continue;
-            }
-            if revolute[i] {
-                q[i] = into_limits(q[i], limits[i]);
-            }
-            finite &= q[i].is_finite();
-            within_limits &= (q[i] >= lo) & (q[i] <= hi);
-        }
-        if !finite {
+        let Some((q, within_limits)) = settle(c.q, revolute, limits) else {
+            continue;
+        };
+        // Two candidates every subproblem solved exactly are distinct: where their
+        // branches split, a subproblem gave two roots at least its merge distance apart
+        // (≥ 6e-6 rad for SP3/SP4, ≳ 1e-7 for SP2 and the prismatic quadratic; see
+        // `subproblems`), far above SAME_CONFIGURATION. Only pairs with a singular or
+        // least-squares candidate can be one configuration twice (the self-tests check
+        // that no solution set holds a duplicate). So an exact candidate with no
+        // checked one before it is a new solution, as it is.
+        if c.fit == Fit::Exact && !any_unchecked {
+            out.items[out.len] = IkBranch {
+                q,
+                exact: true,
+                residual: 0.0,
+                singular: 0,
+                at_singularity: false,
+                within_limits,
+            };
+            out.len += 1;
             continue;
         }
         let (residual, singular) = match c.fit {
@@ -285,19 +275,9 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             },
             within_limits,
         };
-        // Two candidates every subproblem solved exactly are distinct: where their
-        // branches split, a subproblem gave two roots at least its merge distance apart
-        // (≥ 6e-6 rad for SP3/SP4, ≳ 1e-7 for SP2 and the prismatic quadratic; see
-        // `subproblems`), far above SAME_CONFIGURATION. Only pairs with a singular or
-        // least-squares candidate can be one configuration twice (the self-tests check
-        // that no solution set holds a duplicate).
-        let copy = if c.fit == Fit::Exact && !any_unchecked {
-            None
-        } else {
-            (0..out.len)
-                .filter(|&i| c.fit != Fit::Exact || unchecked[i])
-                .find(|&i| same(&out.items[i].q, &q, revolute))
-        };
+        let copy = (0..out.len)
+            .filter(|&i| c.fit != Fit::Exact || unchecked[i])
+            .find(|&i| same(&out.items[i].q, &q, revolute));
         if let Some(i) = copy {
             // Keep the better of two copies of one configuration.
             if exact && !out.items[i].exact {
@@ -312,6 +292,52 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         out.len += 1;
     }
     out
+}
+
+/// A candidate's joint values as a solution: revolute joints wrapped into `(−π, π]`, then
+/// by a whole turn into their limits where that helps; with whether every joint is within
+/// its limits. `None` for a non-finite value.
+#[inline(always)]
+fn settle<const N: usize>(
+    mut q: [f64; N],
+    revolute: &[bool; N],
+    limits: &[[f64; 2]; N],
+) -> Option<([f64; N], bool)> {
+    // As the solvers almost always give it — revolute joints within (−π, π], every joint
+    // within its limits (so finite) — a candidate stays as it is: one branch-free test of
+    // all joints. (Limits that hold a whole turn hold every wrapped value: a constant
+    // test where `limits` is the robot's `LIMITS`.)
+    let mut settled = true;
+    for i in 0..N {
+        let (t, [lo, hi]) = (q[i], limits[i]);
+        let wrapped = (t > -PI) & (t <= PI);
+        settled &= match (revolute[i], lo <= -PI && hi >= PI) {
+            (true, true) => wrapped,
+            (true, false) => wrapped & (t >= lo) & (t <= hi),
+            (false, _) => (t >= lo) & (t <= hi) & t.is_finite(),
+        };
+    }
+    if settled {
+        return Some((q, true));
+    }
+    // One pass; the flags with `&=`, not `&&`.
+    let (mut finite, mut within_limits) = (true, true);
+    for i in 0..N {
+        let [lo, hi] = limits[i];
+        if revolute[i] && lo <= -PI && hi >= PI {
+            // Wrapped into (−π, π], a value is within such limits, and only a non-finite
+            // one comes out as NaN.
+            q[i] = wrap(q[i]);
+            finite &= !q[i].is_nan();
+            continue;
+        }
+        if revolute[i] {
+            q[i] = into_limits(q[i], limits[i]);
+        }
+        finite &= q[i].is_finite();
+        within_limits &= (q[i] >= lo) & (q[i] <= hi);
+    }
+    finite.then_some((q, within_limits))
 }
 
 /// `max |fk − pose|` over the top three rows.
