@@ -41,16 +41,19 @@ fn circle<const L: usize>(
     Vectors::circle(&to(&a), &to(&(x - a)), &to(&k.cross(x)), c, s * sigma)
 }
 
-/// [`circle`] in the coordinates of `plane`.
+/// [`circle`] in the coordinates of `plane` (an orthonormal basis with `e1 × e2 = k`, so
+/// dot and cross products are the same in its coordinates: `k` and `x` are mapped first).
 #[inline(always)]
 fn turned<const L: usize>(
     plane: &Plane,
     k: &V3,
     x: &V3,
-    angles: (Lanes<L>, Lanes<L>),
+    (c, s): (Lanes<L>, Lanes<L>),
     sigma: f64,
 ) -> Vectors<L> {
-    circle(|v| coords(plane, v), k, x, angles, sigma)
+    let (k, x) = (coords(plane, k), coords(plane, x));
+    let a = k * k.dot(&x);
+    Vectors::circle(&a, &(x - a), &k.cross(&x), c, s * sigma)
 }
 
 /// `rot(k, θ) v` for vectors and angles in lanes (Rodrigues), `k` fixed.
