@@ -16,7 +16,9 @@
 use super::geometry::{flat, meet, Geometry, Pose, V3};
 use super::lanes::{Lanes, Vectors};
 use super::solutions::Candidates;
-use super::subproblems::{roots_of, sp1_fit_lanes, sp4, wrap, Fit, Plane, Sp3Lanes, Sp4Lanes};
+use super::subproblems::{
+    roots_of, sp1_fit_lanes, wrap, Fit, Plane, RootLanes, Sp3Lanes, Sp4Lanes,
+};
 use crate::math::fast_atan2_n;
 use core::f64::consts::PI;
 
@@ -106,6 +108,15 @@ fn sides<const L: usize>(
     Some((a.cross(&b).dot_fixed(k), a.dot(&b), exact))
 }
 
+/// q1 — SP4: `h2ᵀ rot(−h1, q1) p16 = d`, its circle and its two distinct exact roots
+/// (`None` otherwise: the wrist centre out of reach, or on axis 1).
+#[inline(always)]
+fn shoulder(h1: &V3, h2: &V3, p16: &V3, d: f64) -> Option<(Sp4Lanes, RootLanes<1>)> {
+    let circle = Sp4Lanes::new(h2, p16, &(-h1));
+    let roots = circle.solve(Lanes([d]), Lanes([d.abs()]))?;
+    roots.exact[0].then_some((circle, roots))
+}
+
 /// `(cos, sin)` of the angles `atan2(y, x)`, without the angles.
 #[inline(always)]
 fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
@@ -135,13 +146,12 @@ pub fn three_parallel_two_intersecting(
         c56 - g.p[3],
     );
     let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
-    // 2. q1 — SP4 (one pair of roots: no lanes yet).
-    let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34 + p45)), 0.0);
-    if t1.n != 2 || t1.fit != Fit::Exact {
-        return None;
-    }
-    let [a, b] = t1.angles;
-    let q1 = (Lanes([a.cos, b.cos]), Lanes([a.sin, b.sin]));
+    // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34 + p45).
+    let (shoulder, t1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34 + p45)))?;
+    let q1 = (
+        Lanes([t1.cos[0].0[0], t1.cos[1].0[0]]),
+        Lanes([t1.sin[0].0[0], t1.sin[1].0[0]]),
+    );
     // The shoulders' lanes: R1ᵀ of what the rest needs of the target, in the coordinates
     // of the plane ⟂ h2 (turns about h2 ∥ h3 ∥ h4 are 2-D rotations there).
     let plane = Plane::new(&h2);
@@ -198,10 +208,10 @@ pub fn three_parallel_two_intersecting(
     let (p23_, p34_) = (coords(&plane, &p23), coords(&plane, &p34));
     let arm3 = about_axis(&Vectors::splat(&p34_), c3, s3_ * s3) + Vectors::splat(&p23_);
     let (q2_y, q2_x, q2_exact) = planar_sides(&arm3, &reach.twice::<8>())?;
-    // Every angle in one pass: q5's d (2), θ (2), q6 (2), q3's d (4), q2 (8), and the
-    // angles φ of the two circles cut in lanes.
-    let mut ys = [0.0; 20];
-    let mut xs = [0.0; 20];
+    // Every angle in one pass: q5's d (2), θ (2), q6 (2), q3's d (4), q2 (8), q1's d,
+    // and the angles φ of the three circles cut.
+    let mut ys = [0.0; 22];
+    let mut xs = [0.0; 22];
     for (at, (y, x)) in [
         (0, (q5.y, q5.x)),
         (2, (theta_y, theta_x)),
@@ -216,8 +226,10 @@ pub fn three_parallel_two_intersecting(
     xs[10..18].copy_from_slice(&q2_x.0);
     (ys[18], xs[18]) = wrist5.phi_sides();
     (ys[19], xs[19]) = elbow.phi_sides();
+    (ys[20], xs[20]) = (t1.y.0[0], t1.x.0[0]);
+    (ys[21], xs[21]) = shoulder.phi_sides();
     let t = fast_atan2_n(ys, xs);
-    for (i, q1) in [a.theta, b.theta].into_iter().enumerate() {
+    for (i, q1) in roots_of(t[21], t[20]).into_iter().enumerate() {
         let [q5_plus, q5_minus] = roots_of(t[18], t[i]);
         let (theta, q6) = (t[2 + i], t[4 + i]);
         let wrists = [
@@ -264,13 +276,12 @@ pub fn spherical_two_parallel(
     let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
     // 1. The wrist centre, from joint 1.
     let p16 = pose.p - r06 * (g.p_tool - w0) - g.p[0];
-    // 2. q1 — SP4 (one pair of roots: no lanes yet).
-    let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), 0.0);
-    if t1.n != 2 || t1.fit != Fit::Exact {
-        return None;
-    }
-    let [a, b] = t1.angles;
-    let q1 = (Lanes([a.cos, b.cos]), Lanes([a.sin, b.sin]));
+    // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34).
+    let (shoulder, t1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34)))?;
+    let q1 = (
+        Lanes([t1.cos[0].0[0], t1.cos[1].0[0]]),
+        Lanes([t1.sin[0].0[0], t1.sin[1].0[0]]),
+    );
     // The shoulders' lanes, in the coordinates of the plane ⟂ h2.
     let plane = Plane::new(&h2);
     let to_plane = |v: &V3| coords(&plane, v);
@@ -318,10 +329,10 @@ pub fn spherical_two_parallel(
     let (q4_y, q4_x, q4_exact) = sides(&r5_h6, &r36_h6, &h4p)?;
     let r5t_h4 = circle(|v| *v, &h5, &h4, q5_first, -1.0);
     let (q6_y, q6_x, q6_exact) = sides(&r36t_h4, &r5t_h4, &h6)?;
-    // Every angle in one pass: q3's d (2), q2 (4), q5's d (4), q4 (4), q6 (4), and the
-    // angles φ of the two circles cut in lanes.
-    let mut ys = [0.0; 20];
-    let mut xs = [0.0; 20];
+    // Every angle in one pass: q3's d (2), q2 (4), q5's d (4), q4 (4), q6 (4), q1's d,
+    // and the angles φ of the three circles cut.
+    let mut ys = [0.0; 22];
+    let mut xs = [0.0; 22];
     ys[..2].copy_from_slice(&q3.y.0);
     xs[..2].copy_from_slice(&q3.x.0);
     for (at, (y, x)) in [
@@ -335,8 +346,10 @@ pub fn spherical_two_parallel(
     }
     (ys[18], xs[18]) = elbow.phi_sides();
     (ys[19], xs[19]) = wrist5.phi_sides();
+    (ys[20], xs[20]) = (t1.y.0[0], t1.x.0[0]);
+    (ys[21], xs[21]) = shoulder.phi_sides();
     let t = fast_atan2_n(ys, xs);
-    for (i, q1) in [a.theta, b.theta].into_iter().enumerate() {
+    for (i, q1) in roots_of(t[21], t[20]).into_iter().enumerate() {
         let roots = if q3.exact[i] { 2 } else { 1 };
         for (r, q3_) in roots_of(t[18], t[i]).into_iter().take(roots).enumerate() {
             let j = 2 * i + r;

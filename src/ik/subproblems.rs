@@ -586,8 +586,9 @@ impl Sp4Lanes {
         let c = &self.circle;
         let (ca, sa) = (c.ca, c.sa);
         let rr = ca * ca + sa * sa;
-        // No angle φ (the scalar solver's `Sp4::new` has none either).
-        if rr <= 0.0 {
+        // A circle of radius zero (relative to the data, as `cos_case` decides): every θ
+        // gives the same value, free or least squares.
+        if rr <= ON_AXIS * scale(c.mag2) {
             return None;
         }
         let mut b = d - c.axial;
