@@ -310,7 +310,8 @@ fn settle<const N: usize>(
     let mut settled = true;
     for i in 0..N {
         let (t, [lo, hi]) = (q[i], limits[i]);
-        let wrapped = (t > -PI) & (t <= PI);
+        // (|t| < π: ±π itself, and NaN, go joint by joint.)
+        let wrapped = t.abs() < PI;
         settled &= match (revolute[i], lo <= -PI && hi >= PI) {
             (true, true) => wrapped,
             (true, false) => wrapped & (t >= lo) & (t <= hi),
