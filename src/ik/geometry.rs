@@ -59,7 +59,11 @@ impl Pose {
     pub fn is_finite(&self) -> bool {
         // `0 · x` is ±0 for a finite x and NaN otherwise, and sums of zeros are exact: one
         // comparison for all twelve entries (instead of a branch each).
-        let zeros = self.r.iter().chain(self.p.iter()).fold(0.0, |sum, x| sum + 0.0 * x);
+        let zeros = self
+            .r
+            .iter()
+            .chain(self.p.iter())
+            .fold(0.0, |sum, x| sum + 0.0 * x);
         zeros == 0.0
     }
 }

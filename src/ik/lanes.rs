@@ -5,6 +5,11 @@
 //! code elsewhere (a Cortex-M). Lane `i` of every result is the scalar operation on lane
 //! `i` of the operands, bit for bit.
 //!
+//! The operations (and the solvers built from them, `ik::regular`) are inlined always
+//! where that gives vector code (x86_64, aarch64), and left to the compiler elsewhere: on
+//! a Cortex-M4F, whose `f64` arithmetic is library calls, inlining every lane operation
+//! cost 12 KB more flash for no speed.
+//!
 //! ```
 //! use kinegen::ik::lanes::Lanes;
 //! let a = Lanes([1.0, 2.0]);
@@ -22,13 +27,13 @@ pub struct Lanes<const L: usize>(pub [f64; L]);
 
 impl<const L: usize> Lanes<L> {
     /// `x` in every lane.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn splat(x: f64) -> Self {
         Lanes([x; L])
     }
 
     /// `f` of every lane.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
         let mut r = self.0;
         for x in &mut r {
@@ -38,14 +43,14 @@ impl<const L: usize> Lanes<L> {
     }
 
     /// `√x` of every lane.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn sqrt(self) -> Self {
         self.map(crate::math::sqrt)
     }
 
     /// Each lane twice, for the next level of branches (every branch splits in two):
     /// lanes `2i` and `2i + 1` of the result are lane `i`. `M` must be `2 L`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn twice<const M: usize>(self) -> Lanes<M> {
         debug_assert!(M == 2 * L);
         let mut r = [0.0; M];
@@ -57,7 +62,7 @@ impl<const L: usize> Lanes<L> {
 
     /// The two branches of every lane, interleaved: lane `2i` of the result is lane `i`
     /// of `first`, lane `2i + 1` lane `i` of `second`. `M` must be `2 L`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn interleave<const M: usize>(first: Self, second: Self) -> Lanes<M> {
         debug_assert!(M == 2 * L);
         let mut r = [0.0; M];
@@ -73,7 +78,7 @@ macro_rules! lane_op {
     ($trait:ident, $f:ident, $op:tt) => {
         impl<const L: usize> $trait for Lanes<L> {
             type Output = Lanes<L>;
-            #[inline(always)]
+            #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
             fn $f(self, other: Lanes<L>) -> Lanes<L> {
                 let mut r = self.0;
                 for i in 0..L {
@@ -84,7 +89,7 @@ macro_rules! lane_op {
         }
         impl<const L: usize> $trait<f64> for Lanes<L> {
             type Output = Lanes<L>;
-            #[inline(always)]
+            #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
             fn $f(self, other: f64) -> Lanes<L> {
                 let mut r = self.0;
                 for x in &mut r {
@@ -103,7 +108,7 @@ lane_op!(Div, div, /=);
 
 impl<const L: usize> Neg for Lanes<L> {
     type Output = Lanes<L>;
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     fn neg(self) -> Lanes<L> {
         self.map(|x| -x)
     }
@@ -122,7 +127,7 @@ pub struct Vectors<const L: usize> {
 
 impl<const L: usize> Vectors<L> {
     /// `v` in every lane.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn splat(v: &Vector3<f64>) -> Self {
         Vectors {
             x: Lanes::splat(v.x),
@@ -133,7 +138,7 @@ impl<const L: usize> Vectors<L> {
 
     /// `a + c u + s w` lane by lane: a point of the circle through `a + u` about an axis
     /// `k` (with `u ⟂ k`, `w = k × u`) at the angle whose cosine is `c` and sine `s`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn circle(
         a: &Vector3<f64>,
         u: &Vector3<f64>,
@@ -149,19 +154,19 @@ impl<const L: usize> Vectors<L> {
     }
 
     /// `self · v` for a fixed `v`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn dot_fixed(&self, v: &Vector3<f64>) -> Lanes<L> {
         self.x * v.x + self.y * v.y + self.z * v.z
     }
 
     /// `self · other`, lane by lane.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn dot(&self, other: &Vectors<L>) -> Lanes<L> {
         self.x * other.x + self.y * other.y + self.z * other.z
     }
 
     /// `self × other`, lane by lane.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn cross(&self, other: &Vectors<L>) -> Vectors<L> {
         Vectors {
             x: self.y * other.z - self.z * other.y,
@@ -171,7 +176,7 @@ impl<const L: usize> Vectors<L> {
     }
 
     /// `self − k (k · self)` for a fixed unit `k`: the part off the axis `k`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn off_axis(&self, k: &Vector3<f64>) -> Vectors<L> {
         let along = self.dot_fixed(k);
         Vectors {
@@ -182,7 +187,7 @@ impl<const L: usize> Vectors<L> {
     }
 
     /// `m v` for a fixed matrix `m`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn mul_by(&self, m: &Matrix3<f64>) -> Vectors<L> {
         let row = |i: usize| self.x * m[(i, 0)] + self.y * m[(i, 1)] + self.z * m[(i, 2)];
         Vectors {
@@ -193,7 +198,7 @@ impl<const L: usize> Vectors<L> {
     }
 
     /// `mᵀ v` for a fixed matrix `m`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn tr_mul_by(&self, m: &Matrix3<f64>) -> Vectors<L> {
         let col = |j: usize| self.x * m[(0, j)] + self.y * m[(1, j)] + self.z * m[(2, j)];
         Vectors {
@@ -204,7 +209,7 @@ impl<const L: usize> Vectors<L> {
     }
 
     /// Each vector twice (see [`Lanes::twice`]).
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn twice<const M: usize>(&self) -> Vectors<M> {
         Vectors {
             x: self.x.twice(),
@@ -216,7 +221,7 @@ impl<const L: usize> Vectors<L> {
 
 impl<const L: usize> Add for Vectors<L> {
     type Output = Vectors<L>;
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     fn add(self, o: Vectors<L>) -> Vectors<L> {
         Vectors {
             x: self.x + o.x,
@@ -228,7 +233,7 @@ impl<const L: usize> Add for Vectors<L> {
 
 impl<const L: usize> Sub for Vectors<L> {
     type Output = Vectors<L>;
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     fn sub(self, o: Vectors<L>) -> Vectors<L> {
         Vectors {
             x: self.x - o.x,
@@ -240,7 +245,7 @@ impl<const L: usize> Sub for Vectors<L> {
 
 impl<const L: usize> Mul<Lanes<L>> for Vectors<L> {
     type Output = Vectors<L>;
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     fn mul(self, s: Lanes<L>) -> Vectors<L> {
         Vectors {
             x: self.x * s,

@@ -23,7 +23,7 @@ use crate::math::fast_atan2_n;
 use core::f64::consts::PI;
 
 /// `v` in the coordinates of `plane` (`e1·v`, `e2·v`, `k·v`).
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn coords(plane: &Plane, v: &V3) -> V3 {
     let s = plane.split(v);
     V3::new(s.v[0], s.v[1], s.along)
@@ -31,7 +31,7 @@ fn coords(plane: &Plane, v: &V3) -> V3 {
 
 /// `rot(k, σ θ) x` for the angles with cosines `c` and sines `s`, `σ = ±1` (`σ = −1`:
 /// `R(θ)ᵀ x`): the circle of `x` about the unit `k`, in the coordinates `to` gives.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn circle<const L: usize>(
     to: impl Fn(&V3) -> V3,
     k: &V3,
@@ -45,7 +45,7 @@ fn circle<const L: usize>(
 
 /// [`circle`] in the coordinates of `plane` (an orthonormal basis with `e1 × e2 = k`, so
 /// dot and cross products are the same in its coordinates: `k` and `x` are mapped first).
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn turned<const L: usize>(
     plane: &Plane,
     k: &V3,
@@ -59,7 +59,7 @@ fn turned<const L: usize>(
 }
 
 /// `rot(k, θ) v` for vectors and angles in lanes (Rodrigues), `k` fixed.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn rotate<const L: usize>(k: &V3, v: &Vectors<L>, (c, s): (Lanes<L>, Lanes<L>)) -> Vectors<L> {
     let along = v.dot_fixed(k) * (Lanes::splat(1.0) - c);
     let kv = Vectors::splat(k).cross(v);
@@ -72,7 +72,7 @@ fn rotate<const L: usize>(k: &V3, v: &Vectors<L>, (c, s): (Lanes<L>, Lanes<L>)) 
 
 /// A turn about the plane's own axis: a 2-D rotation of the in-plane coordinates by the
 /// angles with cosines `c` and sines `s`.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn about_axis<const L: usize>(v: &Vectors<L>, c: Lanes<L>, s: Lanes<L>) -> Vectors<L> {
     Vectors {
         x: c * v.x - s * v.y,
@@ -84,7 +84,7 @@ fn about_axis<const L: usize>(v: &Vectors<L>, c: Lanes<L>, s: Lanes<L>) -> Vecto
 /// SP1 in the plane — `rot(k, θ) a = b` with both in the plane's coordinates — up to its
 /// `atan2`: `(y, x)` and which lanes are exact (as `sp1_planar_sides` decides); `None`
 /// where the angle is free in some lane.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn planar_sides<const L: usize>(
     a: &Vectors<L>,
     b: &Vectors<L>,
@@ -96,7 +96,7 @@ fn planar_sides<const L: usize>(
 
 /// SP1 — `rot(k, θ) p1 = p2` — up to its `atan2`, in lanes: `(y, x)` and which lanes are
 /// exact (as `sp1_sides` decides); `None` where the angle is free in some lane.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn sides<const L: usize>(
     p1: &Vectors<L>,
     p2: &Vectors<L>,
@@ -110,7 +110,7 @@ fn sides<const L: usize>(
 
 /// q1 — SP4: `h2ᵀ rot(−h1, q1) p16 = d`, its circle and its two distinct exact roots
 /// (`None` otherwise: the wrist centre out of reach, or on axis 1).
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn shoulder(h1: &V3, h2: &V3, p16: &V3, d: f64) -> Option<(Sp4Lanes, RootLanes<1>)> {
     let circle = Sp4Lanes::new(h2, p16, &(-h1));
     let roots = circle.solve(Lanes([d]), Lanes([d.abs()]))?;
@@ -118,7 +118,7 @@ fn shoulder(h1: &V3, h2: &V3, p16: &V3, d: f64) -> Option<(Sp4Lanes, RootLanes<1
 }
 
 /// `(cos, sin)` of the angles `atan2(y, x)`, without the angles.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
     let inv = Lanes::splat(1.0) / (x * x + y * y).sqrt();
     (x * inv, y * inv)

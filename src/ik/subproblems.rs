@@ -158,7 +158,7 @@ fn sp1_fit(lengths: [(f64, f64); 2], along_gap: impl FnOnce() -> f64) -> Option<
 
 /// [`sp1_fit`] in lanes, with the same tests: `None` when an end lies on the axis in some
 /// lane (the angle is free there), else which lanes are exact (the others least squares).
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 pub(crate) fn sp1_fit_lanes<const L: usize>(
     [(na, n1), (nb, n2)]: [(Lanes<L>, Lanes<L>); 2],
     along_gap: Lanes<L>,
@@ -550,7 +550,7 @@ pub struct RootLanes<const L: usize> {
 }
 
 /// The two roots `φ ± d` of a lane, wrapped.
-#[inline(always)]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 pub fn roots_of(phi: f64, d: f64) -> [f64; 2] {
     [wrap(phi + d), wrap(phi - d)]
 }
@@ -564,7 +564,7 @@ pub struct Sp4Lanes {
 
 impl Sp4Lanes {
     /// The circle of `p` about `k`, cut by planes `hᵀ x = d`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn new(h: &V3, p: &V3, k: &V3) -> Sp4Lanes {
         Sp4Lanes {
             circle: Sp4Circle::terms(h, p, k),
@@ -572,7 +572,7 @@ impl Sp4Lanes {
     }
 
     /// The circle's angle: `φ = atan2(y, x)` for `(y, x)` this.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn phi_sides(&self) -> (f64, f64) {
         (self.circle.sa, self.circle.ca)
     }
@@ -581,7 +581,7 @@ impl Sp4Lanes {
     /// when each has two distinct exact roots or misses the circle (see [`RootLanes`]);
     /// `None` for a double root, a circle of radius zero, or any other case the scalar
     /// solve flags singular or free.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn solve<const L: usize>(&self, d: Lanes<L>, terms: Lanes<L>) -> Option<RootLanes<L>> {
         let c = &self.circle;
         let (ca, sa) = (c.ca, c.sa);
@@ -638,7 +638,7 @@ pub struct Sp3Lanes {
 
 impl Sp3Lanes {
     /// The circle of `p1` about `k`, against spheres about `p2`.
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn new(p1: &V3, p2: &V3, k: &V3) -> Sp3Lanes {
         Sp3Lanes {
             circle: Sp4Lanes::new(p2, p1, k),
@@ -647,13 +647,13 @@ impl Sp3Lanes {
     }
 
     /// The circle's angle (see [`Sp4Lanes::phi_sides`]).
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn phi_sides(&self) -> (f64, f64) {
         self.circle.phi_sides()
     }
 
     /// [`Sp3::solve`] for `L` squared distances `d²` (see [`Sp4Lanes::solve`]).
-    #[inline(always)]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn solve<const L: usize>(&self, d2: Lanes<L>) -> Option<RootLanes<L>> {
         let rhs = (Lanes::splat(self.n) - d2) * 0.5;
         self.circle.solve(rhs, (d2 + self.n) * 0.5)
