@@ -53,8 +53,8 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 ///
 /// One straight-line path for every lane: the first round of fdlibm's reduction (the one
 /// [`sin_cos`] does), its kernels, the quadrant picked with bit masks, and for each lane
-/// whether that was enough. A single branch, taken when *any* lane is tiny
-/// (|x| < 2⁻²⁷·√2, so also exactly 0), huge (|x| ≥ 2²⁰·π/2), ±∞, NaN, or one fdlibm
+/// whether that was enough. A single branch, taken when *any* lane is tiny but not zero
+/// (0 < |x| < 2⁻²⁷·√2), huge (|x| ≥ 2²⁰·π/2), ±∞, NaN, or one fdlibm
 /// reduces a second time (|x − n·π/2| < 2⁻¹⁶ of |x| rounded down to a power of 2: near a
 /// multiple of π/2, or any |x| beyond about 2¹⁶·π/4 ≈ 5·10⁴), sends those lanes, and only
 /// those, through [`sin_cos`]. (Joints at exactly 0 or ±π/2 are common — home poses,
@@ -259,7 +259,7 @@ mod fdlibm {
 
     /// The first round of [`rem_pio2_medium`] for any `x`, and whether it is the whole of
     /// `rem_pio2_medium(x)` and `x` is in [`sin_cos`]'s fast path (2⁻²⁷·√2 ≤ |x| <
-    /// 2²⁰·π/2): no branch. fdlibm's test for a second round, `ex − ey > 16` on the
+    /// 2²⁰·π/2, or ±0): no branch. fdlibm's test for a second round, `ex − ey > 16` on the
     /// biased exponents of `x` and `y0`, is here `|y0| < 2^(ex − 1023) · 2⁻¹⁶`, the
     /// power of 2 being `|x|` with its mantissa cleared (exact, and false for NaN).
     #[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
@@ -276,7 +276,9 @@ mod fdlibm {
         let power = f64::from_bits(x.to_bits() & EXPONENT);
         // `&` on comparisons, not `&&` (nor `Range::contains`, which is `&&`): no branch.
         #[allow(clippy::manual_range_contains)]
-        let exact = (ax >= FAST_MIN) & (ax < FAST_END) & (abs(y0) >= power * CANCEL);
+        // (±0 too: the kernels give exactly `(±0, 1)` for it, as `sin_cos` does.)
+        let exact =
+            ((ax >= FAST_MIN) | (ax == 0.0)) & (ax < FAST_END) & (abs(y0) >= power * CANCEL);
         (n, y0, (r - y0) - w, exact)
     }
 
@@ -316,7 +318,10 @@ mod fdlibm {
                 let ax = _mm_and_pd(x, bits(ABS));
                 let power = _mm_and_pd(x, bits(EXPONENT));
                 let exact = _mm_and_pd(
-                    _mm_and_pd(_mm_cmpge_pd(ax, k(FAST_MIN)), _mm_cmplt_pd(ax, k(FAST_END))),
+                    _mm_and_pd(
+                        _mm_or_pd(_mm_cmpge_pd(ax, k(FAST_MIN)), _mm_cmpeq_pd(ax, k(0.0))),
+                        _mm_cmplt_pd(ax, k(FAST_END)),
+                    ),
                     _mm_cmpge_pd(_mm_and_pd(y0, bits(ABS)), _mm_mul_pd(power, k(CANCEL))),
                 );
                 let slow = !_mm_movemask_pd(exact) as u32 & 0b11;
@@ -690,6 +695,23 @@ det_lu_impl!(
 mod tests {
     extern crate std;
     use std::vec;
+
+    /// Zeros take `sin_cos_n`'s fast path (a joint at exactly 0 is common), with
+    /// `sin_cos`'s signed zero.
+    #[cfg(not(all(target_arch = "x86", not(target_feature = "sse2"))))]
+    #[test]
+    fn zeros_are_fast_and_signed() {
+        let (zs, zc) = super::sin_cos_n([0.0, -0.0]);
+        assert_eq!(
+            zs.map(f64::to_bits),
+            [0.0f64.to_bits(), (-0.0f64).to_bits()]
+        );
+        assert_eq!(zc, [1.0, 1.0]);
+        assert!(super::fdlibm::rem_pio2_first(0.0).3 && super::fdlibm::rem_pio2_first(-0.0).3);
+        #[cfg(target_arch = "x86_64")]
+        assert_eq!(super::fdlibm::sse2::sin_cos_2([0.0, -0.0]).2, 0);
+    }
+
     /// The SSE2 pair is the portable pair bit for bit (the portable one runs on targets
     /// other than x86_64, the firmware's among them); both set the same fast-path flag.
     #[cfg(target_arch = "x86_64")]
