@@ -173,10 +173,9 @@ pub fn three_parallel_two_intersecting(
     // a = h5 off h6, its sides are `(R5 (h6 × a))·x`, `(R5 a)·x` for x = R14ᵀ R1ᵀ R06 h5.
     let x = about_axis(&t5, ct, -st);
     let a6 = flat(&h6, &h5);
-    let (r5_a6, r5_c6) = (
-        turned(&plane, &h5, &a6, q5_first, 1.0),
-        turned(&plane, &h5, &h6.cross(&a6), q5_first, 1.0),
-    );
+    // R5 (h6 × a) = R5 h6 × R5 a.
+    let r5_a6 = turned(&plane, &h5, &a6, q5_first, 1.0);
+    let r5_c6 = r5_h6.cross(&r5_a6);
     let (q6_y, q6_x, along) = (r5_c6.dot(&x), r5_a6.dot(&x), r5_h6.dot(&x));
     let n5 = t5.dot(&t5);
     let q6_exact = sp1_fit_lanes(
