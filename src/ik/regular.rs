@@ -177,14 +177,14 @@ pub fn three_parallel_two_intersecting(
     let r5_a6 = turned(&plane, &h5, &a6, q5_first, 1.0);
     let r5_c6 = r5_h6.cross(&r5_a6);
     let (q6_y, q6_x, along) = (r5_c6.dot(&x), r5_a6.dot(&x), r5_h6.dot(&x));
-    let n5 = t5.dot(&t5);
+    // x's part off h6, squared, from its coordinates along a and h6 × a (both ⟂ h6, of
+    // length |a|): no cancellation near the wrist singularity, as |x|² − (h6·x)² has.
+    let na6 = a6.norm_squared();
+    let off6 = (q6_x * q6_x + q6_y * q6_y) * (1.0 / na6);
     let q6_exact = sp1_fit_lanes(
         [
-            (
-                Lanes::splat(a6.norm_squared()),
-                Lanes::splat(h5.norm_squared()),
-            ),
-            (n5 - along * along, n5),
+            (Lanes::splat(na6), Lanes::splat(h5.norm_squared())),
+            (off6, off6 + along * along),
         ],
         Lanes::splat(h6.dot(&h5)) - along,
     )?;
