@@ -539,8 +539,8 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
 /// [`fast_atan2`] of `L` pairs at once, lane by lane its bits: on x86_64 and aarch64 one
 /// pass of straight-line code over the lanes (which the compiler keeps in vector
 /// registers: two `atan2` for about 1.2 times the instructions of one on x86_64), then the
-/// rare lanes with zeros, infinities or NaN through the full `atan2`; on other targets
-/// one [`fast_atan2`] per lane.
+/// rare lanes with both zero, both infinite, or NaN through the full `atan2`; on other
+/// targets one [`fast_atan2`] per lane.
 ///
 /// ```
 /// let [a, b] = kinegen::math::fast_atan2_n([1.0, -0.5], [0.3, -2.0]);
@@ -558,20 +558,16 @@ pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
     }
     #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
     {
-        // Per lane `0 · n + 0 · d` (NaN where n or d is NaN or infinite) and `d`, folded
-        // lane by lane: no branch per lane (a special lane's arithmetic is discarded).
-        let (mut probe, mut least) = ([0.0; L], [f64::INFINITY; L]);
         for i in 0..L {
             let (n, d, swap, _) = atan2_octant(y[i], x[i]);
-            probe[i] = 0.0 * n + 0.0 * d;
-            least[i] = d;
             r[i] = atan2_in_octant(y[i], x[i], n, d, swap);
         }
-        let probe = probe.iter().fold(0.0, |a, p| a + p);
-        let least = least
-            .iter()
-            .fold(f64::INFINITY, |a, &d| if d < a { d } else { a });
-        if !(probe == 0.0 && least > 0.0) {
+        // The special lanes are the NaN results: both zero (0/0), both infinite (∞/∞), a
+        // NaN in. (One infinite gives u = 0 and the exact 0, ±π/2 or ±π of the full
+        // `atan2`.) `r − r` is 0 for any other: one comparison of their sum, no branch
+        // per lane.
+        let probe = r.iter().fold(0.0, |sum, v| sum + (v - v));
+        if probe != 0.0 {
             for i in 0..L {
                 if atan2_octant(y[i], x[i]).3 {
                     r[i] = atan2(y[i], x[i]);

@@ -108,6 +108,16 @@ fn lanes_are_fast_atan2_lane_by_lane() {
         (1.0, f64::NAN),
         (1e-320, 1.0),
         (-1e-320, -1e-310),
+        (1.0, -inf),
+        (-1.0, -inf),
+        (inf, -inf),
+        (-inf, -inf),
+        (-0.0, 0.0),
+        (0.0, -0.0),
+        (-2.0, 0.0),
+        (f64::NAN, f64::NAN),
+        (inf, f64::NAN),
+        (f64::MAX, f64::MIN_POSITIVE),
     ];
     let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
     for round in 0..200 {
