@@ -564,9 +564,9 @@ pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
         }
         // The special lanes are the NaN results: both zero (0/0), both infinite (∞/∞), a
         // NaN in. (One infinite gives u = 0 and the exact 0, ±π/2 or ±π of the full
-        // `atan2`.) `r − r` is 0 for any other: one comparison of their sum, no branch
+        // `atan2`.) `0 · r` is ±0 for any other: one comparison of their sum, no branch
         // per lane.
-        let probe = r.iter().fold(0.0, |sum, v| sum + (v - v));
+        let probe = r.iter().fold(0.0, |sum, v| sum + 0.0 * v);
         if probe != 0.0 {
             for i in 0..L {
                 if atan2_octant(y[i], x[i]).3 {
