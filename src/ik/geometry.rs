@@ -254,6 +254,13 @@ const PARALLEL: f64 = 1e-20;
 /// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
 /// closest points: the engine proved they meet, this only absorbs rounding).
 pub(crate) fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
+    // The generated geometries often place a point where the axes meet already (exactly
+    // on the other axis): then that point, without the closest-points solve.
+    for (a, b) in [(i, j), (j, i)] {
+        if g.h[a].cross(&(g.p[b] - g.p[a])) == V3::zeros() {
+            return g.p[b];
+        }
+    }
     match closest_points(&g.p[i], &g.h[i], &g.p[j], &g.h[j], PARALLEL) {
         Some((a, b)) => (a + b) * 0.5,
         None => g.p[i],
@@ -314,6 +321,25 @@ mod tests {
                 assert!(!p.is_finite(), "{bad} at {k}");
             }
         }
+    }
+
+    #[test]
+    fn axes_meet_at_a_point_on_both() {
+        let mut g = Geometry::<2> {
+            h: [V3::z(), V3::x()],
+            p: [V3::new(1.0, 2.0, 5.0), V3::new(4.0, 2.0, 3.0)],
+            prismatic: [false; 2],
+            r_tool: M3::identity(),
+            p_tool: V3::zeros(),
+        };
+        // Axis 0 is the line x = 1, y = 2; axis 1 the line y = 2, z = 3: they meet at
+        // (1, 2, 3), which neither point is (the closest-points solve finds it).
+        let want = V3::new(1.0, 2.0, 3.0);
+        assert!((meet(&g, 0, 1) - want).norm() < 1e-15);
+        // A point already at the meeting point is taken as it is, either way round.
+        g.p[1] = want;
+        assert_eq!(meet(&g, 0, 1), want);
+        assert_eq!(meet(&g, 1, 0), want);
     }
 
     #[test]
