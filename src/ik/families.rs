@@ -549,12 +549,12 @@ pub fn planar<const N: usize>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::ik::subproblems::Fit;
 
     /// UR5 (standard DH, CB3 numbers) at q = 0 in product-of-exponentials form.
-    fn ur5() -> Geometry<6> {
+    pub(crate) fn ur5() -> Geometry<6> {
         let (d1, a2, a3, d4, d5, d6) = (0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823);
         let z = V3::z();
         let y = V3::new(0.0, -1.0, 0.0);
@@ -608,7 +608,7 @@ mod tests {
     }
 
     /// A PUMA-like arm at q = 0 (shoulder offset, elbow offset): spherical, orthogonal wrist.
-    fn puma() -> Geometry<6> {
+    pub(crate) fn puma() -> Geometry<6> {
         let (a2, a3, d3, d4) = (0.4318, 0.0203, 0.15005, 0.4318);
         let (z, y) = (V3::z(), V3::y());
         Geometry {

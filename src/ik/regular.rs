@@ -135,6 +135,21 @@ pub fn three_parallel_two_intersecting(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if avx2::available() {
+        // SAFETY: the CPU has AVX2 (asked at run time).
+        return unsafe { avx2::three_parallel_two_intersecting(g, pose, out) };
+    }
+    three_parallel_two_intersecting_lanes(g, pose, out)
+}
+
+/// [`three_parallel_two_intersecting`] itself, inlined into each of its builds.
+#[inline(always)]
+fn three_parallel_two_intersecting_lanes(
+    g: &Geometry<6>,
+    pose: &Pose,
+    out: &mut Candidates<6, 8>,
+) -> Option<()> {
     let c56 = meet(g, 4, 5);
     let r06 = pose.r * g.r_tool.transpose();
     let [h1, h2, h3, h4, h5, h6] = g.h;
@@ -268,6 +283,21 @@ pub fn spherical_two_parallel(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if avx2::available() {
+        // SAFETY: the CPU has AVX2 (asked at run time).
+        return unsafe { avx2::spherical_two_parallel(g, pose, out) };
+    }
+    spherical_two_parallel_lanes(g, pose, out)
+}
+
+/// [`spherical_two_parallel`] itself, inlined into each of its builds.
+#[inline(always)]
+fn spherical_two_parallel_lanes(
+    g: &Geometry<6>,
+    pose: &Pose,
+    out: &mut Candidates<6, 8>,
+) -> Option<()> {
     let w0 = meet(g, 3, 4);
     let r06 = pose.r * g.r_tool.transpose();
     let [h1, h2, h3, h4, h5, h6] = g.h;
@@ -364,4 +394,102 @@ pub fn spherical_two_parallel(
         }
     }
     Some(())
+}
+
+/// The lanes solvers built for AVX2 as well, chosen at run time where the CPU has it (with
+/// `std`, which can ask): four `f64` lanes per register instead of SSE2's two, and
+/// three-operand instructions (no register copies). The same operations in the same order,
+/// so the same bits (no fused multiply-add: Rust never contracts `a * b + c`).
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+mod avx2 {
+    use super::*;
+
+    /// Whether this CPU has AVX2 (cached by `std` after the first call).
+    #[inline]
+    pub fn available() -> bool {
+        std::is_x86_feature_detected!("avx2")
+    }
+
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn three_parallel_two_intersecting(
+        g: &Geometry<6>,
+        pose: &Pose,
+        out: &mut Candidates<6, 8>,
+    ) -> Option<()> {
+        three_parallel_two_intersecting_lanes(g, pose, out)
+    }
+
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn spherical_two_parallel(
+        g: &Geometry<6>,
+        pose: &Pose,
+        out: &mut Candidates<6, 8>,
+    ) -> Option<()> {
+        spherical_two_parallel_lanes(g, pose, out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::families::tests::{puma, ur5};
+    use crate::ik::geometry::rot;
+
+    /// Poses of `g` from seeded configurations, some moved out of reach.
+    fn poses(g: &Geometry<6>) -> impl Iterator<Item = Pose> + '_ {
+        let mut rng = crate::ik::XorShift64::new(31);
+        (0..2000).map(move |n| {
+            let q: [f64; 6] = core::array::from_fn(|_| 6.0 * rng.next_f64() - 3.0);
+            let mut pose = g.fk(&q);
+            if n % 4 == 3 {
+                pose.p += rot(&V3::z(), q[0]) * V3::x() * 0.2;
+            }
+            pose
+        })
+    }
+
+    /// The AVX2 build gives the baseline build's candidates bit for bit (where the CPU
+    /// has AVX2 to run it).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[test]
+    fn avx2_build_is_the_baseline_bit_for_bit() {
+        if !avx2::available() {
+            std::println!("no AVX2 on this CPU: nothing to compare");
+            return;
+        }
+        type Solve = fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>;
+        let solvers: [(Geometry<6>, Solve, Solve); 2] = [
+            (
+                ur5(),
+                |g, p, o| three_parallel_two_intersecting_lanes(g, p, o),
+                // SAFETY: the CPU has AVX2 (checked above).
+                |g, p, o| unsafe { avx2::three_parallel_two_intersecting(g, p, o) },
+            ),
+            (
+                puma(),
+                |g, p, o| spherical_two_parallel_lanes(g, p, o),
+                // SAFETY: as above.
+                |g, p, o| unsafe { avx2::spherical_two_parallel(g, p, o) },
+            ),
+        ];
+        for (g, baseline, avx2) in solvers {
+            let mut solved = 0;
+            for pose in poses(&g) {
+                let (mut a, mut b) = (Candidates::default(), Candidates::default());
+                let (ra, rb) = (baseline(&g, &pose, &mut a), avx2(&g, &pose, &mut b));
+                assert_eq!(ra, rb);
+                solved += usize::from(ra.is_some());
+                assert_eq!(a.as_slice().len(), b.as_slice().len());
+                for (x, y) in a.as_slice().iter().zip(b.as_slice()) {
+                    assert_eq!(x.fit, y.fit);
+                    assert_eq!(x.q.map(f64::to_bits), y.q.map(f64::to_bits), "{pose:?}");
+                }
+            }
+            assert!(solved > 1500, "{solved}");
+        }
+    }
 }
