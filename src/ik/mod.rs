@@ -5,7 +5,8 @@
 //!   the `kinematics!` macro classifies the robot's joint axes exactly at expansion time
 //!   and, when a family fits, generates `ik`, `ik_near` and `IK_FAMILY`. Every solution,
 //!   in a fixed-size [`IkSolutions`], each flagged exact or least squares, singular, and
-//!   within limits ([`solutions`]).
+//!   within limits ([`solutions`]). Regular poses of the UR and PUMA families take
+//!   [`regular`]: the branches of each level side by side in [`lanes`].
 //! - Numerical ([`numeric`], re-exported here): Newton–Raphson, damped least squares,
 //!   Levenberg–Marquardt, Jacobian transpose, multi-start — for any robot.
 //!
