@@ -204,38 +204,45 @@ fn length(rng: &mut XorShift64) -> f64 {
     }
 }
 
-#[test]
-fn random_universal_robots() {
-    let mut rng = XorShift64::new(7);
-    for table in 0..20 {
-        let robot = Ur5 {
-            d1: length(&mut rng),
-            a2: length(&mut rng),
-            a3: length(&mut rng),
-            d4: length(&mut rng),
-            d5: length(&mut rng),
-            d6: length(&mut rng),
-        };
-        let g = moved(&robot.ik_geometry(), &mut rng);
-        let name = format!("UR-like table {table}");
-        compare(&name, &g, three_parallel_two_intersecting(), 300 + table);
+/// Twenty random tables of a family: `table` makes the robot's geometry from random link
+/// lengths, then it gets random base and tool frames.
+fn random_tables(
+    family: &str,
+    solvers: (Lanes, ByBranch),
+    seed: u64,
+    table: impl Fn(&mut XorShift64) -> Geometry<6>,
+) {
+    let mut rng = XorShift64::new(seed);
+    for k in 0..20 {
+        let g = moved(&table(&mut rng), &mut rng);
+        compare(&format!("{family} table {k}"), &g, solvers, 100 * seed + k);
     }
 }
 
 #[test]
+fn random_universal_robots() {
+    random_tables("UR-like", three_parallel_two_intersecting(), 7, |rng| {
+        let mut l = || length(rng);
+        let (d1, a2, a3, d4, d5, d6) = (l(), l(), l(), l(), l(), l());
+        Ur5 {
+            d1,
+            a2,
+            a3,
+            d4,
+            d5,
+            d6,
+        }
+        .ik_geometry()
+    });
+}
+
+#[test]
 fn random_spherical_wrist_robots() {
-    let mut rng = XorShift64::new(8);
-    for table in 0..20 {
-        let robot = Puma560 {
-            a2: length(&mut rng),
-            a3: length(&mut rng),
-            d3: length(&mut rng),
-            d4: length(&mut rng),
-        };
-        let g = moved(&robot.ik_geometry(), &mut rng);
-        let name = format!("PUMA-like table {table}");
-        compare(&name, &g, spherical_two_parallel(), 400 + table);
-    }
+    random_tables("PUMA-like", spherical_two_parallel(), 8, |rng| {
+        let mut l = || length(rng);
+        let (a2, a3, d3, d4) = (l(), l(), l(), l());
+        Puma560 { a2, a3, d3, d4 }.ik_geometry()
+    });
 }
 
 fn three_parallel_two_intersecting() -> (Lanes, ByBranch) {

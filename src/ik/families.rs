@@ -12,6 +12,7 @@
 
 use super::geometry::{flat, meet, orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
 use super::regular;
+use super::setup::ThreeParallel;
 use super::solutions::Candidates;
 use super::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_angle, sp1_planar_sides,
@@ -132,6 +133,23 @@ fn with_wrist(
     }
 }
 
+/// The candidates of a regular pose from the lanes of [`regular`] (for an orthogonal
+/// wrist), else those of `by_branch`.
+#[inline]
+fn regular_first(
+    g: &Geometry<6>,
+    pose: &Pose,
+    pair: WristPair,
+    lanes: fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>,
+    by_branch: impl FnOnce() -> Candidates<6, 8>,
+) -> Candidates<6, 8> {
+    let mut out = Candidates::default();
+    if pair == WristPair::HalfTurn && lanes(g, pose, &mut out).is_some() {
+        return out;
+    }
+    by_branch()
+}
+
 /// `R06 = R0T r_toolᵀ` and the wrist centre `w` (joints 4, 5, 6 meet there) of the
 /// target, with `w` at `q = 0`.
 fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
@@ -156,11 +174,9 @@ pub fn spherical_two_parallel(
     free: &[f64; 6],
     pair: WristPair,
 ) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
-    if pair == WristPair::HalfTurn && regular::spherical_two_parallel(g, pose, &mut out).is_some() {
-        return out;
-    }
-    spherical_two_parallel_by_branch(g, pose, free, pair)
+    regular_first(g, pose, pair, regular::spherical_two_parallel, || {
+        spherical_two_parallel_by_branch(g, pose, free, pair)
+    })
 }
 
 /// [`spherical_two_parallel`] one branch after another, for every pose (the singular and
@@ -318,13 +334,13 @@ pub fn three_parallel_two_intersecting(
     free: &[f64; 6],
     pair: WristPair,
 ) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
-    if pair == WristPair::HalfTurn
-        && regular::three_parallel_two_intersecting(g, pose, &mut out).is_some()
-    {
-        return out;
-    }
-    three_parallel_two_intersecting_by_branch(g, pose, free, pair)
+    regular_first(
+        g,
+        pose,
+        pair,
+        regular::three_parallel_two_intersecting,
+        || three_parallel_two_intersecting_by_branch(g, pose, free, pair),
+    )
 }
 
 /// [`three_parallel_two_intersecting`] one branch after another, for every pose (the
@@ -337,18 +353,9 @@ pub fn three_parallel_two_intersecting_by_branch(
     pair: WristPair,
 ) -> Candidates<6, 8> {
     let mut out = Candidates::default();
-    let c56 = meet(g, 4, 5);
-    let r06 = pose.r * g.r_tool.transpose();
-    let [h1, h2, h3, h4, h5, h6] = g.h;
-    // h3 = σ3 h2, h4 = σ4 h2 (the engine proved them parallel).
-    let (s3, s4) = (h3.dot(&h2).signum(), h4.dot(&h2).signum());
-    let (p12, p23, p34, p45) = (
-        g.p[1] - g.p[0],
-        g.p[2] - g.p[1],
-        g.p[3] - g.p[2],
-        c56 - g.p[3],
-    );
-    let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
+    let set_up = ThreeParallel::new(g, pose);
+    let ([h1, h2, h3, h4, h5, h6], [p12, p23, p34, p45]) = (set_up.h, set_up.links);
+    let (s3, s4, r06, p16) = (set_up.s3, set_up.s4, set_up.r06, set_up.p16);
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34 + p45)), free[0]);
     // The circles cut once per branch: h2ᵀ rot(h5, q5) h6 (step 3), and the elbow's with
     // θ known (step 5, in the plane ⟂ h2).
@@ -549,30 +556,10 @@ pub fn planar<const N: usize>(
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
+mod tests {
     use super::*;
+    use crate::ik::geometry::examples::{puma, ur5};
     use crate::ik::subproblems::Fit;
-
-    /// UR5 (standard DH, CB3 numbers) at q = 0 in product-of-exponentials form.
-    pub(crate) fn ur5() -> Geometry<6> {
-        let (d1, a2, a3, d4, d5, d6) = (0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823);
-        let z = V3::z();
-        let y = V3::new(0.0, -1.0, 0.0);
-        Geometry {
-            h: [z, y, y, y, -z, y],
-            p: [
-                V3::zeros(),
-                V3::new(0.0, 0.0, d1),
-                V3::new(a2, 0.0, d1),
-                V3::new(a2 + a3, -d4, d1),
-                V3::new(a2 + a3, -d4, d1),
-                V3::new(a2 + a3, -d4, d1 - d5),
-            ],
-            prismatic: [false; 6],
-            r_tool: M3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
-            p_tool: V3::new(a2 + a3, -d4 - d6, d1 - d5),
-        }
-    }
 
     #[test]
     fn ur5_all_eight_and_the_generating_one() {
@@ -604,26 +591,6 @@ pub(crate) mod tests {
                 (0..6).all(|i| wrap(a.q[i] - b.q[i]).abs() < 1e-12),
                 "{a:?} {b:?}"
             );
-        }
-    }
-
-    /// A PUMA-like arm at q = 0 (shoulder offset, elbow offset): spherical, orthogonal wrist.
-    pub(crate) fn puma() -> Geometry<6> {
-        let (a2, a3, d3, d4) = (0.4318, 0.0203, 0.15005, 0.4318);
-        let (z, y) = (V3::z(), V3::y());
-        Geometry {
-            h: [z, y, y, z, y, z],
-            p: [
-                V3::zeros(),
-                V3::zeros(),
-                V3::new(a2, d3, 0.0),
-                V3::new(a2 + a3, d3, d4),
-                V3::new(a2 + a3, d3, d4),
-                V3::new(a2 + a3, d3, d4),
-            ],
-            prismatic: [false; 6],
-            r_tool: M3::identity(),
-            p_tool: V3::new(a2 + a3, d3, d4),
         }
     }
 

@@ -285,6 +285,53 @@ pub(crate) fn sqrt0(x: f64) -> f64 {
     sqrt(x.max(0.0))
 }
 
+/// Geometries of real arms for the unit tests of the solvers.
+#[cfg(test)]
+pub(crate) mod examples {
+    use super::*;
+
+    /// UR5 (standard DH, CB3 numbers) at q = 0 in product-of-exponentials form.
+    pub(crate) fn ur5() -> Geometry<6> {
+        let (d1, a2, a3, d4, d5, d6) = (0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823);
+        let z = V3::z();
+        let y = V3::new(0.0, -1.0, 0.0);
+        Geometry {
+            h: [z, y, y, y, -z, y],
+            p: [
+                V3::zeros(),
+                V3::new(0.0, 0.0, d1),
+                V3::new(a2, 0.0, d1),
+                V3::new(a2 + a3, -d4, d1),
+                V3::new(a2 + a3, -d4, d1),
+                V3::new(a2 + a3, -d4, d1 - d5),
+            ],
+            prismatic: [false; 6],
+            r_tool: M3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
+            p_tool: V3::new(a2 + a3, -d4 - d6, d1 - d5),
+        }
+    }
+
+    /// A PUMA-like arm at q = 0 (shoulder offset, elbow offset): spherical, orthogonal wrist.
+    pub(crate) fn puma() -> Geometry<6> {
+        let (a2, a3, d3, d4) = (0.4318, 0.0203, 0.15005, 0.4318);
+        let (z, y) = (V3::z(), V3::y());
+        Geometry {
+            h: [z, y, y, z, y, z],
+            p: [
+                V3::zeros(),
+                V3::zeros(),
+                V3::new(a2, d3, 0.0),
+                V3::new(a2 + a3, d3, d4),
+                V3::new(a2 + a3, d3, d4),
+                V3::new(a2 + a3, d3, d4),
+            ],
+            prismatic: [false; 6],
+            r_tool: M3::identity(),
+            p_tool: V3::new(a2 + a3, d3, d4),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

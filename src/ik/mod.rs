@@ -20,6 +20,7 @@ pub mod geometry;
 pub mod lanes;
 pub mod numeric;
 pub mod regular;
+pub mod setup;
 pub mod solutions;
 pub mod subproblems;
 

@@ -15,12 +15,37 @@
 
 use super::geometry::{flat, meet, Geometry, Pose, V3};
 use super::lanes::{Lanes, Vectors};
+use super::setup::ThreeParallel;
 use super::solutions::Candidates;
 use super::subproblems::{
     roots_of, sp1_fit_lanes, wrap, Fit, Plane, RootLanes, Sp3Lanes, Sp4Lanes,
 };
 use crate::math::fast_atan2_n;
 use core::f64::consts::PI;
+
+/// Calls the lanes solver `$solver(g, pose, out)` built for AVX2 where the CPU has it
+/// (x86_64 with `std`, which can ask at run time), else as built for the target: four
+/// `f64` lanes per register instead of SSE2's two, and three-operand instructions (no
+/// register copies). The same operations in the same order, so the same bits (no fused
+/// multiply-add: Rust never contracts `a * b + c`); the tests compare both builds.
+macro_rules! best_build {
+    ($solver:ident($g:ident, $pose:ident, $out:ident)) => {{
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        {
+            /// # Safety
+            /// The CPU must have AVX2.
+            #[target_feature(enable = "avx2")]
+            unsafe fn avx2(g: &Geometry<6>, pose: &Pose, out: &mut Candidates<6, 8>) -> Option<()> {
+                $solver(g, pose, out)
+            }
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (asked just now; `std` caches the answer).
+                return unsafe { avx2($g, $pose, $out) };
+            }
+        }
+        $solver($g, $pose, $out)
+    }};
+}
 
 /// `v` in the coordinates of `plane` (`e1·v`, `e2·v`, `k·v`).
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
@@ -135,12 +160,7 @@ pub fn three_parallel_two_intersecting(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if avx2::available() {
-        // SAFETY: the CPU has AVX2 (asked at run time).
-        return unsafe { avx2::three_parallel_two_intersecting(g, pose, out) };
-    }
-    three_parallel_two_intersecting_lanes(g, pose, out)
+    best_build!(three_parallel_two_intersecting_lanes(g, pose, out))
 }
 
 /// [`three_parallel_two_intersecting`] itself, inlined into each of its builds.
@@ -150,17 +170,9 @@ fn three_parallel_two_intersecting_lanes(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
-    let c56 = meet(g, 4, 5);
-    let r06 = pose.r * g.r_tool.transpose();
-    let [h1, h2, h3, h4, h5, h6] = g.h;
-    let (s3, s4) = (h3.dot(&h2).signum(), h4.dot(&h2).signum());
-    let (p12, p23, p34, p45) = (
-        g.p[1] - g.p[0],
-        g.p[2] - g.p[1],
-        g.p[3] - g.p[2],
-        c56 - g.p[3],
-    );
-    let p16 = pose.p - r06 * (g.p_tool - c56) - g.p[0];
+    let set_up = ThreeParallel::new(g, pose);
+    let ([h1, h2, h3, _, h5, h6], [p12, p23, p34, p45]) = (set_up.h, set_up.links);
+    let (s3, s4, r06, p16) = (set_up.s3, set_up.s4, set_up.r06, set_up.p16);
     // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34 + p45).
     let (shoulder, t1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34 + p45)))?;
     let q1 = (
@@ -283,12 +295,7 @@ pub fn spherical_two_parallel(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if avx2::available() {
-        // SAFETY: the CPU has AVX2 (asked at run time).
-        return unsafe { avx2::spherical_two_parallel(g, pose, out) };
-    }
-    spherical_two_parallel_lanes(g, pose, out)
+    best_build!(spherical_two_parallel_lanes(g, pose, out))
 }
 
 /// [`spherical_two_parallel`] itself, inlined into each of its builds.
@@ -396,47 +403,10 @@ fn spherical_two_parallel_lanes(
     Some(())
 }
 
-/// The lanes solvers built for AVX2 as well, chosen at run time where the CPU has it (with
-/// `std`, which can ask): four `f64` lanes per register instead of SSE2's two, and
-/// three-operand instructions (no register copies). The same operations in the same order,
-/// so the same bits (no fused multiply-add: Rust never contracts `a * b + c`).
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-mod avx2 {
-    use super::*;
-
-    /// Whether this CPU has AVX2 (cached by `std` after the first call).
-    #[inline]
-    pub fn available() -> bool {
-        std::is_x86_feature_detected!("avx2")
-    }
-
-    /// # Safety
-    /// The CPU must have AVX2.
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn three_parallel_two_intersecting(
-        g: &Geometry<6>,
-        pose: &Pose,
-        out: &mut Candidates<6, 8>,
-    ) -> Option<()> {
-        three_parallel_two_intersecting_lanes(g, pose, out)
-    }
-
-    /// # Safety
-    /// The CPU must have AVX2.
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn spherical_two_parallel(
-        g: &Geometry<6>,
-        pose: &Pose,
-        out: &mut Candidates<6, 8>,
-    ) -> Option<()> {
-        spherical_two_parallel_lanes(g, pose, out)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ik::families::tests::{puma, ur5};
+    use crate::ik::geometry::examples::{puma, ur5};
     use crate::ik::geometry::rot;
 
     /// Poses of `g` from seeded configurations, some moved out of reach.
@@ -452,35 +422,30 @@ mod tests {
         })
     }
 
-    /// The AVX2 build gives the baseline build's candidates bit for bit (where the CPU
-    /// has AVX2 to run it).
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    /// The build the entry points choose (AVX2 where the CPU has it) gives the baseline
+    /// build's candidates bit for bit.
     #[test]
-    fn avx2_build_is_the_baseline_bit_for_bit() {
-        if !avx2::available() {
-            std::println!("no AVX2 on this CPU: nothing to compare");
-            return;
-        }
+    fn the_chosen_build_is_the_baseline_bit_for_bit() {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        std::println!("AVX2: {}", std::is_x86_feature_detected!("avx2"));
         type Solve = fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>;
         let solvers: [(Geometry<6>, Solve, Solve); 2] = [
             (
                 ur5(),
                 |g, p, o| three_parallel_two_intersecting_lanes(g, p, o),
-                // SAFETY: the CPU has AVX2 (checked above).
-                |g, p, o| unsafe { avx2::three_parallel_two_intersecting(g, p, o) },
+                three_parallel_two_intersecting,
             ),
             (
                 puma(),
                 |g, p, o| spherical_two_parallel_lanes(g, p, o),
-                // SAFETY: as above.
-                |g, p, o| unsafe { avx2::spherical_two_parallel(g, p, o) },
+                spherical_two_parallel,
             ),
         ];
-        for (g, baseline, avx2) in solvers {
+        for (g, baseline, chosen) in solvers {
             let mut solved = 0;
             for pose in poses(&g) {
                 let (mut a, mut b) = (Candidates::default(), Candidates::default());
-                let (ra, rb) = (baseline(&g, &pose, &mut a), avx2(&g, &pose, &mut b));
+                let (ra, rb) = (baseline(&g, &pose, &mut a), chosen(&g, &pose, &mut b));
                 assert_eq!(ra, rb);
                 solved += usize::from(ra.is_some());
                 assert_eq!(a.as_slice().len(), b.as_slice().len());
