@@ -253,6 +253,7 @@ const PARALLEL: f64 = 1e-20;
 
 /// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
 /// closest points: the engine proved they meet, this only absorbs rounding).
+#[inline]
 pub(crate) fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
     // The generated geometries often place a point where the axes meet already (exactly
     // on the other axis): then that point, without the closest-points solve.

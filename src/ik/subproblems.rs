@@ -457,7 +457,7 @@ struct Sp4Circle {
 }
 
 impl Sp4Circle {
-    #[inline]
+    #[inline(always)]
     fn terms(h: &V3, p: &V3, k: &V3) -> Sp4Circle {
         // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
         Sp4Circle {
