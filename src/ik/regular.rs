@@ -1,17 +1,18 @@
 //! Closed-form IK of a **regular** pose — every subproblem on the way has two distinct
-//! exact roots: no singular configuration, nothing out of reach — with the branches of
-//! each level side by side in [`Lanes`], and every joint angle from one batch of `atan2`
-//! at the end.
+//! exact roots (or, for a branch whose wrist centre the elbow cannot reach, its one
+//! least-squares root): no singular configuration, no angle left free — with the branches
+//! of each level side by side in [`Lanes`], and every joint angle from one batch of
+//! `atan2` at the end.
 //!
 //! The derivation is the family's ([`super::families`]): the same subproblems in the same
 //! order, the same decisions (exact, double root, least squares), with what each level
 //! needs of its roots — their sines and cosines, which the subproblems give algebraically
 //! — for all branches at once. The angles are only printed into the solutions, so their
-//! `atan2` wait for the end: eighteen in one pass. Almost every pose is regular; the
-//! family's solver runs this first and, where it returns `None` (some lane singular or
-//! least squares), solves the pose branch by branch as before, with `free` values and
-//! fits. The solutions are those of the branch-by-branch solve, in the same order, to
-//! rounding (`tests/ik_regular.rs` compares them).
+//! `atan2` wait for the end: twenty-two in one pass. Almost every pose is regular; the
+//! family's solver runs this first and, where it returns `None` (a double root, a free
+//! angle, a circle of radius zero in some lane), solves the pose branch by branch as
+//! before, with `free` values and fits. The solutions are those of the branch-by-branch
+//! solve, in the same order, to rounding (`tests/ik_regular.rs` compares them).
 
 use super::geometry::{flat, meet, Geometry, Pose, V3};
 use super::lanes::{Lanes, Vectors};
