@@ -12,6 +12,7 @@
 //! (a prismatic joint `i` adds `q[i] h[i]` after `R_1 ⋯ R_{i−1}`). Any point on an axis
 //! serves; the solvers move points onto axis intersections ([`closest_points`]).
 
+use super::lanes::{Lanes, Vectors};
 use crate::math::{abs, sin_cos, sqrt};
 use nalgebra::{Matrix3, Vector3};
 
@@ -164,6 +165,12 @@ impl Orbit {
     #[inline]
     pub fn back(&self, t: &Angle) -> V3 {
         self.a + self.u * t.cos - self.w * t.sin
+    }
+
+    /// `rot(k, θ) p` for the `L` angles with cosines `c` and sines `s` (`−s`: backwards).
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
+    pub fn at_lanes<const L: usize>(&self, c: Lanes<L>, s: Lanes<L>) -> Vectors<L> {
+        Vectors::circle(&self.a, &self.u, &self.w, c, s)
     }
 }
 

@@ -14,7 +14,7 @@
 //! before, with `free` values and fits. The solutions are those of the branch-by-branch
 //! solve, in the same order, to rounding (`tests/ik_regular.rs` compares them).
 
-use super::geometry::{flat, meet, Geometry, Pose, V3};
+use super::geometry::{flat, meet, Geometry, Orbit, Pose, V3};
 use super::lanes::{Lanes, Vectors};
 use super::setup::ThreeParallel;
 use super::solutions::Candidates;
@@ -56,21 +56,9 @@ fn coords(plane: &Plane, v: &V3) -> V3 {
 }
 
 /// `rot(k, σ θ) x` for the angles with cosines `c` and sines `s`, `σ = ±1` (`σ = −1`:
-/// `R(θ)ᵀ x`): the circle of `x` about the unit `k`, in the coordinates `to` gives.
-#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
-fn circle<const L: usize>(
-    to: impl Fn(&V3) -> V3,
-    k: &V3,
-    x: &V3,
-    (c, s): (Lanes<L>, Lanes<L>),
-    sigma: f64,
-) -> Vectors<L> {
-    let a = k * k.dot(x);
-    Vectors::circle(&to(&a), &to(&(x - a)), &to(&k.cross(x)), c, s * sigma)
-}
-
-/// [`circle`] in the coordinates of `plane` (an orthonormal basis with `e1 × e2 = k`, so
-/// dot and cross products are the same in its coordinates: `k` and `x` are mapped first).
+/// `R(θ)ᵀ x`), in the coordinates of `plane`: `x`'s orbit about the unit `k`, both mapped
+/// first (an orthonormal basis with `e1 × e2 = k`: dot and cross products are the same in
+/// its coordinates).
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn turned<const L: usize>(
     plane: &Plane,
@@ -79,9 +67,7 @@ fn turned<const L: usize>(
     (c, s): (Lanes<L>, Lanes<L>),
     sigma: f64,
 ) -> Vectors<L> {
-    let (k, x) = (coords(plane, k), coords(plane, x));
-    let a = k * k.dot(&x);
-    Vectors::circle(&a, &(x - a), &k.cross(&x), c, s * sigma)
+    Orbit::new(&coords(plane, k), &coords(plane, x)).at_lanes(c, s * sigma)
 }
 
 /// `rot(k, θ) v` for vectors and angles in lanes (Rodrigues), `k` fixed.
@@ -364,7 +350,7 @@ fn spherical_two_parallel_lanes(
     // q4 — SP1: rot(h4, q4) R5 h6 = R36 h6; q6 — SP1: rot(h6, q6) R36ᵀ h4 = R5ᵀ h4.
     let r5_h6 = turned(&plane, &h5, &h6, q5_first, 1.0);
     let (q4_y, q4_x, q4_exact) = sides(&r5_h6, &r36_h6, &h4p)?;
-    let r5t_h4 = circle(|v| *v, &h5, &h4, q5_first, -1.0);
+    let r5t_h4 = Orbit::new(&h5, &h4).at_lanes(q5_first.0, -q5_first.1);
     let (q6_y, q6_x, q6_exact) = sides(&r36t_h4, &r5t_h4, &h6)?;
     // Every angle in one pass: q3's d (2), q2 (4), q5's d (4), q4 (4), q6 (4), q1's d,
     // and the angles φ of the three circles cut.
