@@ -12,7 +12,7 @@
 
 use super::geometry::{flat, meet, orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
 use super::regular;
-use super::setup::ThreeParallel;
+use super::setup::{wrist_centre, ThreeParallel};
 use super::solutions::Candidates;
 use super::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_angle, sp1_planar_sides,
@@ -148,15 +148,6 @@ fn regular_first(
         return out;
     }
     by_branch()
-}
-
-/// `R06 = R0T r_toolᵀ` and the wrist centre `w` (joints 4, 5, 6 meet there) of the
-/// target, with `w` at `q = 0`.
-fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
-    let w0 = meet(g, 3, 4);
-    let r06 = pose.r * g.r_tool.transpose();
-    let target = pose.p - r06 * (g.p_tool - w0);
-    (r06, w0, target)
 }
 
 /// **Spherical wrist, h2 ∥ h3** (PUMA 560, KUKA KR, ABB IRB 120/140):

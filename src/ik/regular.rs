@@ -14,9 +14,9 @@
 //! before, with `free` values and fits. The solutions are those of the branch-by-branch
 //! solve, in the same order, to rounding (`tests/ik_regular.rs` compares them).
 
-use super::geometry::{flat, meet, Geometry, Orbit, Pose, V3};
+use super::geometry::{flat, Geometry, Orbit, Pose, M3, V3};
 use super::lanes::{Lanes, Vectors};
-use super::setup::ThreeParallel;
+use super::setup::{wrist_centre, ThreeParallel};
 use super::solutions::Candidates;
 use super::subproblems::{
     roots_of, sp1_fit_lanes, wrap, Fit, Plane, RootLanes, Sp3Lanes, Sp4Lanes,
@@ -292,13 +292,12 @@ fn spherical_two_parallel_lanes(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
-    let w0 = meet(g, 3, 4);
-    let r06 = pose.r * g.r_tool.transpose();
+    let (r06, w0, w) = wrist_centre(g, pose);
     let [h1, h2, h3, h4, h5, h6] = g.h;
     let s3 = h3.dot(&h2).signum();
     let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
     // 1. The wrist centre, from joint 1.
-    let p16 = pose.p - r06 * (g.p_tool - w0) - g.p[0];
+    let p16 = w - g.p[0];
     // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34).
     let (shoulder, t1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34)))?;
     let q1 = (
@@ -330,12 +329,7 @@ fn spherical_two_parallel_lanes(
     // R06ᵀ R1 R23 h4 (in the base frame).
     let r36_h6 = about_axis(&x6.twice::<4>(), c23, -s23);
     let h4_ = about_axis(&Vectors::splat(&to_plane(&h4)), c23, s23);
-    let [e1, e2, k] = plane.basis();
-    let h4_23 = Vectors {
-        x: h4_.x * e1.x + h4_.y * e2.x + h4_.z * k.x,
-        y: h4_.x * e1.y + h4_.y * e2.y + h4_.z * k.y,
-        z: h4_.x * e1.z + h4_.y * e2.z + h4_.z * k.z,
-    };
+    let h4_23 = h4_.mul_by(&M3::from_columns(&plane.basis()));
     let (c1, s1) = q1;
     let r36t_h4 = rotate(&h1, &h4_23, (c1.twice(), s1.twice())).tr_mul_by(&r06);
     // q5 — SP4: h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.

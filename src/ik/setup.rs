@@ -1,4 +1,4 @@
-//! What a family's solvers compute from the geometry and the target before the first
+//! What the family solvers compute from the geometry and the target before the first
 //! joint, shared by the branch-by-branch solvers ([`super::families`]) and the lanes
 //! ([`super::regular`]).
 
@@ -28,7 +28,7 @@ impl ThreeParallel {
     #[inline(always)]
     pub fn new(g: &Geometry<6>, pose: &Pose) -> ThreeParallel {
         let c56 = meet(g, 4, 5);
-        let r06 = pose.r * g.r_tool.transpose();
+        let (r06, c56_target) = target_point(g, pose, &c56);
         let h = g.h;
         ThreeParallel {
             h,
@@ -41,7 +41,24 @@ impl ThreeParallel {
                 c56 - g.p[3],
             ],
             r06,
-            p16: pose.p - r06 * (g.p_tool - c56) - g.p[0],
+            p16: c56_target - g.p[0],
         }
     }
+}
+
+/// The target's rotation without the tool, `R06 = R0T r_toolᵀ`, and where the point `c` of
+/// the last link (given at `q = 0`) is at the target: `p0T − R06 (p_tool − c)`.
+#[inline(always)]
+pub fn target_point(g: &Geometry<6>, pose: &Pose, c: &V3) -> (M3, V3) {
+    let r06 = pose.r * g.r_tool.transpose();
+    (r06, pose.p - r06 * (g.p_tool - c))
+}
+
+/// A spherical wrist's `R06`, its centre `w0` (where joints 4, 5, 6 meet) at `q = 0`, and
+/// the centre at the target.
+#[inline(always)]
+pub fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
+    let w0 = meet(g, 3, 4);
+    let (r06, w) = target_point(g, pose, &w0);
+    (r06, w0, w)
 }
