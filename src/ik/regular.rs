@@ -120,13 +120,21 @@ fn sides<const L: usize>(
     Some((a.cross(&b).dot_fixed(k), a.dot(&b), exact))
 }
 
-/// q1 — SP4: `h2ᵀ rot(−h1, q1) p16 = d`, its circle and its two distinct exact roots
-/// (`None` otherwise: the wrist centre out of reach, or on axis 1).
+/// q1 — SP4: `h2ᵀ rot(−h1, q1) p16 = d`, its circle, its two distinct exact roots, and
+/// their cosines and sines as the two lanes of the shoulders (`None` otherwise: the wrist
+/// centre out of reach, or on axis 1).
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
-fn shoulder(h1: &V3, h2: &V3, p16: &V3, d: f64) -> Option<(Sp4Lanes, RootLanes<1>)> {
+fn shoulder(
+    h1: &V3,
+    h2: &V3,
+    p16: &V3,
+    d: f64,
+) -> Option<(Sp4Lanes, RootLanes<1>, (Lanes<2>, Lanes<2>))> {
     let circle = Sp4Lanes::new(h2, p16, &(-h1));
     let roots = circle.solve(Lanes([d]), Lanes([d.abs()]))?;
-    roots.exact[0].then_some((circle, roots))
+    let (c, s) = (roots.cos, roots.sin);
+    let q1 = (Lanes([c[0].0[0], c[1].0[0]]), Lanes([s[0].0[0], s[1].0[0]]));
+    roots.exact[0].then_some((circle, roots, q1))
 }
 
 /// `(cos, sin)` of the angles `atan2(y, x)`, without the angles.
@@ -161,11 +169,7 @@ fn three_parallel_two_intersecting_lanes(
     let ([h1, h2, h3, _, h5, h6], [p12, p23, p34, p45]) = (set_up.h, set_up.links);
     let (s3, s4, r06, p16) = (set_up.s3, set_up.s4, set_up.r06, set_up.p16);
     // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34 + p45).
-    let (shoulder, t1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34 + p45)))?;
-    let q1 = (
-        Lanes([t1.cos[0].0[0], t1.cos[1].0[0]]),
-        Lanes([t1.sin[0].0[0], t1.sin[1].0[0]]),
-    );
+    let (shoulder, t1, q1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34 + p45)))?;
     // The shoulders' lanes: R1ᵀ of what the rest needs of the target, in the coordinates
     // of the plane ⟂ h2 (turns about h2 ∥ h3 ∥ h4 are 2-D rotations there).
     let plane = Plane::new(&h2);
@@ -299,11 +303,7 @@ fn spherical_two_parallel_lanes(
     // 1. The wrist centre, from joint 1.
     let p16 = w - g.p[0];
     // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34).
-    let (shoulder, t1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34)))?;
-    let q1 = (
-        Lanes([t1.cos[0].0[0], t1.cos[1].0[0]]),
-        Lanes([t1.sin[0].0[0], t1.sin[1].0[0]]),
-    );
+    let (shoulder, t1, q1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34)))?;
     // The shoulders' lanes, in the coordinates of the plane ⟂ h2.
     let plane = Plane::new(&h2);
     let to_plane = |v: &V3| coords(&plane, v);

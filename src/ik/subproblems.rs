@@ -10,7 +10,7 @@
 //! like, and splitting it into two roots `±1e-8` apart would make the angles after it
 //! meaningless.
 
-use super::geometry::{orthogonal, scale, sqrt0, Angle, V3};
+use super::geometry::{flat, orthogonal, scale, sqrt0, Angle, V3};
 use super::lanes::Lanes;
 use crate::math::{fast_atan2 as atan2, fast_atan2_n, sqrt};
 
@@ -89,12 +89,6 @@ impl Roots {
     }
 }
 
-/// `p − (k·p) k`: the part of `p` off the axis `k`.
-#[inline]
-fn off_axis(k: &V3, p: &V3) -> V3 {
-    p - k * k.dot(p)
-}
-
 /// **SP1** — `θ` with `rot(k, θ) p1 = p2`: the angle that turns `p1` onto `p2` about `k`.
 ///
 /// Least squares (`‖rot(k, θ) p1 − p2‖` minimised) when the two differ in length or in
@@ -129,7 +123,7 @@ pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
 /// [`sp1_angles_2`].
 #[inline(always)]
 pub fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
-    let (a, b) = (off_axis(k, p1), off_axis(k, p2));
+    let (a, b) = (flat(k, p1), flat(k, p2));
     let lengths = [
         (a.norm_squared(), p1.norm_squared()),
         (b.norm_squared(), p2.norm_squared()),
@@ -461,7 +455,7 @@ impl Sp4Circle {
     fn terms(h: &V3, p: &V3, k: &V3) -> Sp4Circle {
         // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
         Sp4Circle {
-            ca: h.dot(&off_axis(k, p)),
+            ca: h.dot(&flat(k, p)),
             sa: h.dot(&k.cross(p)),
             axial: h.dot(k) * k.dot(p),
             mag2: h.norm_squared() * p.norm_squared(),
