@@ -236,25 +236,6 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         let Some((q, within_limits)) = settle(c.q, revolute, limits) else {
             continue;
         };
-        // Two candidates every subproblem solved exactly are distinct: where their
-        // branches split, a subproblem gave two roots at least its merge distance apart
-        // (≥ 6e-6 rad for SP3/SP4, ≳ 1e-7 for SP2 and the prismatic quadratic; see
-        // `subproblems`), far above SAME_CONFIGURATION. Only pairs with a singular or
-        // least-squares candidate can be one configuration twice (the self-tests check
-        // that no solution set holds a duplicate). So an exact candidate with no
-        // checked one before it is a new solution, as it is.
-        if c.fit == Fit::Exact && !any_unchecked {
-            out.items[out.len] = IkBranch {
-                q,
-                exact: true,
-                residual: 0.0,
-                singular: 0,
-                at_singularity: false,
-                within_limits,
-            };
-            out.len += 1;
-            continue;
-        }
         let (residual, singular) = match c.fit {
             Fit::Exact => (0.0, 0),
             _ => (check.residual(&q, pose), check.singular(&q)),
@@ -275,6 +256,18 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             },
             within_limits,
         };
+        // Two candidates every subproblem solved exactly are distinct: where their
+        // branches split, a subproblem gave two roots at least its merge distance apart
+        // (≥ 6e-6 rad for SP3/SP4, ≳ 1e-7 for SP2 and the prismatic quadratic; see
+        // `subproblems`), far above SAME_CONFIGURATION. Only pairs with a singular or
+        // least-squares candidate can be one configuration twice (the self-tests check
+        // that no solution set holds a duplicate). So an exact candidate with no
+        // checked one before it is a new solution, as it is.
+        if c.fit == Fit::Exact && !any_unchecked {
+            out.items[out.len] = branch;
+            out.len += 1;
+            continue;
+        }
         let copy = (0..out.len)
             .filter(|&i| c.fit != Fit::Exact || unchecked[i])
             .find(|&i| same(&out.items[i].q, &q, revolute));
