@@ -163,36 +163,34 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
     );
 }
 
+/// The robots of `robots/` in one family, each with its own seed.
+fn robots(robots: &[(&str, Geometry<6>)], solvers: (Lanes, ByBranch), seed: u64) {
+    for (k, (name, g)) in robots.iter().enumerate() {
+        compare(name, g, solvers, seed + k as u64);
+    }
+}
+
 #[test]
 fn universal_robots() {
-    let robots = [
+    let family = [
         ("UR3", Ur3::default().ik_geometry()),
         ("UR5", Ur5::default().ik_geometry()),
         ("UR10", Ur10::default().ik_geometry()),
         ("UR5e", Ur5e::default().ik_geometry()),
         ("UR10e", Ur10e::default().ik_geometry()),
     ];
-    for (seed, (name, g)) in robots.iter().enumerate() {
-        compare(
-            name,
-            g,
-            three_parallel_two_intersecting(),
-            100 + seed as u64,
-        );
-    }
+    robots(&family, three_parallel_two_intersecting(), 100);
 }
 
 #[test]
 fn spherical_wrist_robots() {
-    let robots = [
+    let family = [
         ("PUMA 560", Puma560::default().ik_geometry()),
         ("KR 6 R900", KukaKr6R900::default().ik_geometry()),
         ("IRB 120", AbbIrb120::default().ik_geometry()),
         ("IRB 140", AbbIrb140::default().ik_geometry()),
     ];
-    for (seed, (name, g)) in robots.iter().enumerate() {
-        compare(name, g, spherical_two_parallel(), 200 + seed as u64);
-    }
+    robots(&family, spherical_two_parallel(), 200);
 }
 
 fn length(rng: &mut XorShift64) -> f64 {
