@@ -128,30 +128,22 @@ pub fn sp1_sides(p1: &V3, p2: &V3, k: &V3) -> Option<(f64, f64, Fit)> {
         (a.norm_squared(), p1.norm_squared()),
         (b.norm_squared(), p2.norm_squared()),
     ];
-    let fit = sp1_fit(lengths, || k.dot(p1) - k.dot(p2))?;
+    let fit = sp1_fit(lengths, k.dot(p1) - k.dot(p2))?;
     Some((k.dot(&a.cross(&b)), a.dot(&b), fit))
 }
 
 /// SP1's decision from what it needs of `p1` and `p2`: per end, the squared length off
-/// the axis and the squared length, and (only asked for when the lengths agree) the
-/// difference of their components along the axis. `None`: an end lies on the axis.
+/// the axis and the squared length, and the difference of their components along the
+/// axis. `None`: an end lies on the axis. The one-lane case of [`sp1_fit_lanes`].
 #[inline(always)]
-fn sp1_fit(lengths: [(f64, f64); 2], along_gap: impl FnOnce() -> f64) -> Option<Fit> {
-    let [(na, n1), (nb, n2)] = lengths;
-    let (s1, s2) = (scale(n1), scale(n2));
-    if na <= ON_AXIS * s1 || nb <= ON_AXIS * s2 {
-        return None;
-    }
-    // |gap| ≤ 1e-9 √(s1 + s2), squared (no square root).
-    let same = (na - nb).abs() <= 1e-9 * (na + nb) && {
-        let gap = along_gap();
-        gap * gap <= 1e-18 * (s1 + s2)
-    };
-    Some(if same { Fit::Exact } else { Fit::LeastSquares })
+fn sp1_fit(lengths: [(f64, f64); 2], along_gap: f64) -> Option<Fit> {
+    let [(na, n1), (nb, n2)] = lengths.map(|(a, n)| (Lanes([a]), Lanes([n])));
+    let [exact] = sp1_fit_lanes([(na, n1), (nb, n2)], Lanes([along_gap]))?;
+    Some(if exact { Fit::Exact } else { Fit::LeastSquares })
 }
-
-/// [`sp1_fit`] in lanes, with the same tests: `None` when an end lies on the axis in some
-/// lane (the angle is free there), else which lanes are exact (the others least squares).
+/// SP1's decision ([`sp1_fit`]) for `L` lanes at once: `None` when an end lies on the
+/// axis in some lane (the angle is free there), else which lanes are exact (the others
+/// least squares).
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 pub(crate) fn sp1_fit_lanes<const L: usize>(
     [(na, n1), (nb, n2)]: [(Lanes<L>, Lanes<L>); 2],
@@ -163,7 +155,9 @@ pub(crate) fn sp1_fit_lanes<const L: usize>(
     let mut off_axis = true;
     let mut exact = [true; L];
     for (i, exact) in exact.iter_mut().enumerate() {
-        off_axis &= (na.0[i] > ON_AXIS * s1.0[i]) & (nb.0[i] > ON_AXIS * s2.0[i]);
+        // (`!(… <= …)`, not `>`: a NaN length counts as off the axis, and inexact.)
+        off_axis &= !((na.0[i] <= ON_AXIS * s1.0[i]) | (nb.0[i] <= ON_AXIS * s2.0[i]));
+        // |gap| ≤ 1e-9 √(s1 + s2), squared (no square root).
         *exact =
             ((na.0[i] - nb.0[i]).abs() <= 1e-9 * (na.0[i] + nb.0[i])) & (gap2.0[i] <= room.0[i]);
     }
@@ -283,7 +277,7 @@ pub fn sp1_planar_sides(p1: &Planar, p2: &Planar) -> Option<(f64, f64, Fit)> {
         (na, na + p1.along * p1.along),
         (nb, nb + p2.along * p2.along),
     ];
-    let fit = sp1_fit(lengths, || p1.along - p2.along)?;
+    let fit = sp1_fit(lengths, p1.along - p2.along)?;
     Some((a0 * b1 - a1 * b0, a0 * b0 + a1 * b1, fit))
 }
 
