@@ -339,20 +339,14 @@ fn cos_equation(
         }
     };
     // φ ± d, with d = atan2(√(r² − b²), b) ∈ [0, π].
-    let (plus, minus) = match phi {
-        Some(phi) => {
-            let d = atan2(sd, b);
-            (wrap(phi.theta + d), wrap(phi.theta - d))
-        }
-        None => {
-            let [plus, minus] = fast_atan2_n(
-                [sa * b + ca * sd, sa * b - ca * sd],
-                [ca * b - sa * sd, ca * b + sa * sd],
-            );
-            (plus, minus)
-        }
+    let thetas = match phi {
+        Some(phi) => roots_of(phi.theta, atan2(sd, b)),
+        None => fast_atan2_n(
+            [sa * b + ca * sd, sa * b - ca * sd],
+            [ca * b - sa * sd, ca * b + sa * sd],
+        ),
     };
-    two_roots(ca, sa, b, sd, rr, [plus, minus])
+    two_roots(ca, sa, b, sd, rr, thetas)
 }
 
 /// Which solutions `a cos θ + a' sin θ = b` has (see [`cos_equation`]).
