@@ -10,6 +10,7 @@
 //! - no two solutions are the same configuration.
 
 use core::f64::consts::{FRAC_PI_2, PI, TAU};
+use kinegen::ik::solutions::NEAR_MISS;
 use kinegen::ik::{IkSolutions, XorShift64};
 use kinegen_robots::*;
 
@@ -107,6 +108,15 @@ fn check<const N: usize, const K: usize>(
             "{name}: exact solution {:?} of q = {q:?} is {e:e} off",
             b.q
         );
+    }
+    // A pose some branch reaches gets no branch that misses it (but by a near-tangency).
+    if sols.exact().next().is_some() {
+        for b in sols.iter() {
+            assert!(
+                b.exact || b.residual <= NEAR_MISS,
+                "{name}: {b:?} misses the pose of q = {q:?}, which other branches reach"
+            );
+        }
     }
     for (i, a) in sols.iter().enumerate() {
         for b in &sols.as_slice()[i + 1..] {

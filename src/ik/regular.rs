@@ -12,12 +12,16 @@
 //! family's solver runs this first and, where it returns `None` (a double root, a free
 //! angle, a circle of radius zero in some lane), solves the pose branch by branch as
 //! before, with `free` values and fits. The solutions are those of the branch-by-branch
-//! solve, in the same order, to rounding (`tests/ik_regular.rs` compares them).
+//! solve, in the same order, to rounding (`tests/ik_regular.rs` compares them) — but for
+//! the branches whose elbow misses a pose another branch reaches by more than `FAR`
+//! (2√3 · [`NEAR_MISS`]): `finish` would check them with the
+//! robot's `fk` only to leave them out (no answer to a pose the arm reaches), so the lanes
+//! leave them out first.
 
 use super::geometry::{flat, Geometry, Orbit, Pose, M3, V3};
 use super::lanes::{Lanes, Vectors};
 use super::setup::{wrist_centre, ThreeParallel};
-use super::solutions::Candidates;
+use super::solutions::{Candidates, NEAR_MISS};
 use super::subproblems::{
     roots_of, sp1_fit_lanes, wrap, Fit, Plane, RootLanes, Sp3Lanes, Sp4Lanes,
 };
@@ -137,6 +141,38 @@ fn shoulder(
     roots.exact[0].then_some((circle, roots, q1))
 }
 
+/// An elbow out of reach by more than this misses the pose by more than [`NEAR_MISS`]:
+/// where the rest of the branch is solved exactly, its orientation is the pose's and its
+/// position error is the elbow's miss, whose largest coordinate is at least its length
+/// over √3 (twice that here, for rounding).
+const FAR: f64 = 2.0 * 1.732_050_807_568_877_2 * NEAR_MISS;
+
+/// Of the `misses` lanes — an elbow out of reach, the rest of the branch exact — those
+/// whose miss exceeds [`FAR`] where some branch reaches the pose (`reached`, asked only
+/// if there are such lanes): `finish` would check their branches only to leave them out,
+/// as no answer to a pose the arm reaches. None where no branch reaches it (a pose out of
+/// reach keeps every branch's nearest).
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
+fn far_elbows<const L: usize>(
+    elbow: &Sp3Lanes,
+    d2: Lanes<L>,
+    misses: [bool; L],
+    reached: impl FnOnce() -> bool,
+) -> [bool; L] {
+    /// Out of line: few poses have a branch out of reach.
+    #[cold]
+    #[inline(never)]
+    fn far<const L: usize>(elbow: &Sp3Lanes, d2: Lanes<L>, misses: [bool; L]) -> [bool; L] {
+        let miss = elbow.miss(d2);
+        core::array::from_fn(|i| misses[i] && miss.0[i] > FAR)
+    }
+    if misses.contains(&true) && reached() {
+        far(elbow, d2, misses)
+    } else {
+        [false; L]
+    }
+}
+
 /// `(cos, sin)` of the angles `atan2(y, x)`, without the angles.
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
@@ -148,8 +184,9 @@ fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
 /// regular pose: the steps of `families::three_parallel_two_intersecting`, level by level
 /// — the two shoulders (q1), then per shoulder q5's first root, θ and q6 (the second root
 /// by half turns), then the four elbows' SP3, then the eight q2. The candidates go to
-/// `out` (empty before, and left untouched unless the pose is regular); `None` where a
-/// level is not regular in some lane.
+/// `out` (empty before, and left untouched unless the pose is regular), but for branches
+/// with a far elbow (see the module doc); `None` where a level is not regular in some
+/// lane.
 pub fn three_parallel_two_intersecting(
     g: &Geometry<6>,
     pose: &Pose,
@@ -216,7 +253,8 @@ fn three_parallel_two_intersecting_lanes(
     let p45_ = Vectors::splat(&coords(&plane, &p45));
     let reach = arm.twice::<4>() - about_axis(&p45_, ct4, st4);
     let elbow = Sp3Lanes::new(&flat(&h2, &p34), &flat(&h2, &(-p23)), &h3);
-    let q3 = elbow.solve(reach.x * reach.x + reach.y * reach.y)?;
+    let d2 = reach.x * reach.x + reach.y * reach.y;
+    let q3 = elbow.solve(d2)?;
     // 6. q2 — SP1 in the plane: rot(h2, q2) (p23 + R3 p34) = reach. Eight branches.
     let (c3, s3_): (Lanes<8>, Lanes<8>) = (
         Lanes::interleave(q3.cos[0], q3.cos[1]),
@@ -246,6 +284,9 @@ fn three_parallel_two_intersecting_lanes(
     (ys[20], xs[20]) = (t1.y.0[0], t1.x.0[0]);
     (ys[21], xs[21]) = shoulder.phi_sides();
     let t = fast_atan2_n(ys, xs);
+    // Every lane's wrist is exact here: a branch is, where its elbow and q2 are.
+    let exact = |l: usize| q3.exact[l / 2] && q2_exact[l];
+    let far = far_elbows(&elbow, d2, q3.exact.map(|e| !e), || (0..8).any(exact));
     for (i, q1) in roots_of(t[21], t[20]).into_iter().enumerate() {
         let [q5_plus, q5_minus] = roots_of(t[18], t[i]);
         let (theta, q6) = (t[2 + i], t[4 + i]);
@@ -255,6 +296,9 @@ fn three_parallel_two_intersecting_lanes(
         ];
         for (k, (theta, q5, q6)) in wrists.into_iter().enumerate() {
             let j = 2 * i + k;
+            if far[j] {
+                continue;
+            }
             let roots = if q3.exact[j] { 2 } else { 1 };
             for (r, q3_) in roots_of(t[19], t[6 + j])
                 .into_iter()
@@ -263,7 +307,7 @@ fn three_parallel_two_intersecting_lanes(
             {
                 let q2 = t[10 + 2 * j + r];
                 let q4 = wrap(s4 * (theta - q2 - s3 * q3_));
-                let fit = if q3.exact[j] && q2_exact[2 * j + r] {
+                let fit = if exact(2 * j + r) {
                     Fit::Exact
                 } else {
                     Fit::LeastSquares
@@ -279,8 +323,8 @@ fn three_parallel_two_intersecting_lanes(
 /// regular pose: the steps of `families::spherical_two_parallel`, level by level — the
 /// two shoulders (q1), their elbows' SP3, the four q2, then the four wrists' q5 (first
 /// root), q4 and q6 (the second root by half turns). The candidates go to `out` (empty
-/// before, and left untouched unless the pose is regular); `None` where a level is not
-/// regular in some lane.
+/// before, and left untouched unless the pose is regular), but for branches with a far
+/// elbow (see the module doc); `None` where a level is not regular in some lane.
 pub fn spherical_two_parallel(
     g: &Geometry<6>,
     pose: &Pose,
@@ -312,7 +356,8 @@ fn spherical_two_parallel_lanes(
     // 3. q3 — SP3 in the plane: ‖p23 + rot(h3, q3) p34‖ = ‖R1ᵀ p16 − p12‖; a shoulder
     // whose wrist centre is out of the elbow's reach has one least-squares q3.
     let elbow = Sp3Lanes::new(&flat(&h3, &p34), &flat(&h3, &(-p23)), &h3);
-    let q3 = elbow.solve(v.x * v.x + v.y * v.y)?;
+    let d2 = v.x * v.x + v.y * v.y;
+    let q3 = elbow.solve(d2)?;
     // 4. q2 — SP1 in the plane: rot(h2, q2) (p23 + R3 p34) = R1ᵀ p16 − p12. Four
     // branches (q1, q3) from here on.
     let (c3, s3_): (Lanes<4>, Lanes<4>) = (
@@ -346,6 +391,12 @@ fn spherical_two_parallel_lanes(
     let (q4_y, q4_x, q4_exact) = sides(&r5_h6, &r36_h6, &h4p)?;
     let r5t_h4 = Orbit::new(&h5, &h4).at_lanes(q5_first.0, -q5_first.1);
     let (q6_y, q6_x, q6_exact) = sides(&r36t_h4, &r5t_h4, &h6)?;
+    let exact = |j: usize| q3.exact[j / 2] && q2_exact[j] && q4_exact[j] && q6_exact[j];
+    // An elbow out of reach has one branch, j = 2 i; its orientation is exact where its
+    // q4 and q6 are.
+    let misses: [bool; 2] =
+        core::array::from_fn(|i| !q3.exact[i] && q4_exact[2 * i] && q6_exact[2 * i]);
+    let far = far_elbows(&elbow, d2, misses, || (0..4).any(exact));
     // Every angle in one pass: q3's d (2), q2 (4), q5's d (4), q4 (4), q6 (4), q1's d,
     // and the angles φ of the three circles cut.
     let mut ys = [0.0; 22];
@@ -367,12 +418,15 @@ fn spherical_two_parallel_lanes(
     (ys[21], xs[21]) = shoulder.phi_sides();
     let t = fast_atan2_n(ys, xs);
     for (i, q1) in roots_of(t[21], t[20]).into_iter().enumerate() {
+        if far[i] {
+            continue;
+        }
         let roots = if q3.exact[i] { 2 } else { 1 };
         for (r, q3_) in roots_of(t[18], t[i]).into_iter().take(roots).enumerate() {
             let j = 2 * i + r;
             let [q5_plus, q5_minus] = roots_of(t[19], t[6 + j]);
             let (q2, q4, q6) = (t[2 + j], t[10 + j], t[14 + j]);
-            let fit = if q3.exact[i] && q2_exact[j] && q4_exact[j] && q6_exact[j] {
+            let fit = if exact(j) {
                 Fit::Exact
             } else {
                 Fit::LeastSquares

@@ -59,7 +59,9 @@ pub struct IkBranch<const N: usize, T = f64> {
     /// helps, else into `(−π, π]`).
     pub q: [T; N],
     /// `fk(q)` reaches the pose (to [`EXACT_TOLERANCE`]). `false`: the pose is out of
-    /// reach and `q` is the nearest the solver found (least squares), see `residual`.
+    /// reach and `q` is the nearest the solver found (least squares), see `residual` —
+    /// or, where other branches reach the pose, this one misses it by at most
+    /// [`NEAR_MISS`] (a near-tangency).
     pub exact: bool,
     /// `max |fk(q) − pose|` over the 12 entries of the top three rows, when it was
     /// measured: for least-squares branches and singular ones. `0.0` for the branches
@@ -86,6 +88,13 @@ pub struct IkSolutions<const N: usize, const K: usize, T = f64> {
 
 /// Largest `max |fk(q) − pose|` entry of a branch that counts as exact.
 pub const EXACT_TOLERANCE: f64 = 1e-10;
+
+/// Largest residual of a branch that misses a pose another branch reaches and is still
+/// returned (flagged inexact): a near-tangency, which an f32 robot's solutions count as
+/// exact ([`EXACT_TOLERANCE_F32`]). A branch that misses by more is no answer to a pose
+/// the arm reaches; its least-squares configuration is returned only for a pose out of
+/// every branch's reach.
+pub const NEAR_MISS: f64 = EXACT_TOLERANCE_F32;
 
 /// Largest `|factor(q)|` at which a singular factor counts as vanishing.
 pub const SINGULAR_TOLERANCE: f64 = 1e-9;
@@ -123,6 +132,18 @@ impl<const N: usize, const K: usize, T: Copy + Default> IkSolutions<N, K, T> {
     /// The solutions.
     pub fn as_slice(&self) -> &[IkBranch<N, T>] {
         &self.items[..self.len]
+    }
+
+    /// Keeps the solutions `keep` says yes to, in order.
+    fn retain(&mut self, keep: impl Fn(&IkBranch<N, T>) -> bool) {
+        let mut len = 0;
+        for i in 0..self.len {
+            if keep(&self.items[i]) {
+                self.items[len] = self.items[i];
+                len += 1;
+            }
+        }
+        self.len = len;
     }
 
     /// The solutions, in order.
@@ -218,7 +239,8 @@ pub trait Check<const N: usize> {
 
 /// The robot's solution set from a solver's candidates: joint values wrapped into
 /// `limits`, least-squares and singular branches checked against `check`, duplicates
-/// removed.
+/// removed; where some branch reaches the pose, the branches that miss it by more than
+/// [`NEAR_MISS`] left out.
 #[inline]
 pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     candidates: &Candidates<N, K>,
@@ -283,6 +305,10 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         any_unchecked |= c.fit != Fit::Exact;
         out.items[out.len] = branch;
         out.len += 1;
+    }
+    // Only a checked branch can miss.
+    if any_unchecked && out.iter().any(|b| b.exact) {
+        out.retain(|b| b.exact || b.residual <= NEAR_MISS);
     }
     out
 }

@@ -634,6 +634,22 @@ impl Sp3Lanes {
         self.circle.phi_sides()
     }
 
+    /// How far each distance `d` (given squared) lies outside the distances
+    /// `‖rot(k, θ) p1 − p2‖` the circle reaches over θ: positive where `d` is out of
+    /// reach, by that much; zero or negative where some θ reaches it.
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
+    pub fn miss<const L: usize>(&self, d2: Lanes<L>) -> Lanes<L> {
+        // ‖rot p1 − p2‖² = n − 2 p2ᵀ rot p1, and p2ᵀ rot p1 = axial ± √rr at the extremes.
+        let c = &self.circle.circle;
+        let r = sqrt(c.ca * c.ca + c.sa * c.sa);
+        let (near, far) = (self.n - 2.0 * (c.axial + r), self.n - 2.0 * (c.axial - r));
+        let (near, far) = (sqrt0(near), sqrt0(far));
+        d2.map(|d2| {
+            let d = sqrt(d2);
+            (d - far).max(near - d)
+        })
+    }
+
     /// [`Sp3::solve`] for `L` squared distances `d²` (see [`Sp4Lanes::solve`]).
     #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn solve<const L: usize>(&self, d2: Lanes<L>) -> Option<RootLanes<L>> {
@@ -859,6 +875,44 @@ mod tests {
         // A point on the axis: no circle, the free value.
         let on_axis = Sp4::new(&h, &(k * 2.0), &k);
         same(on_axis.solve(0.1, 0.3), sp4(&h, &(k * 2.0), &k, 0.1, 0.3));
+    }
+
+    #[test]
+    fn sp3_lanes_miss_is_the_distance_out_of_reach() {
+        // A circle off the sphere's centre and tilted against its axis (p1 not ⟂ k).
+        let (k, p1, p2) = (
+            unit(0.2, -0.5, 1.0),
+            V3::new(0.3, 0.4, -0.2),
+            V3::new(-0.1, 0.5, 0.35),
+        );
+        let elbow = Sp3Lanes::new(&p1, &p2, &k);
+        // The distances the circle reaches, swept over θ.
+        let (mut near, mut far) = (f64::INFINITY, 0.0_f64);
+        for i in 0..100_000 {
+            let d = (rot(&k, i as f64 * core::f64::consts::TAU / 1e5) * p1 - p2).norm();
+            (near, far) = (near.min(d), far.max(d));
+        }
+        assert!(near > 0.05 && far - near > 0.1, "{near} {far}");
+        let ds = [
+            0.5 * near,
+            near - 1e-3,
+            0.5 * (near + far),
+            far + 1e-3,
+            2.0 * far,
+        ];
+        let miss = elbow.miss(Lanes(ds.map(|d| d * d)));
+        for (d, miss) in ds.into_iter().zip(miss.0) {
+            let want = (d - far).max(near - d);
+            // The sweep finds the extremes to (Δθ)² · r ≈ 4e-10.
+            assert!((miss - want).abs() < 1e-9, "d {d}: {miss} vs {want}");
+            // Out of reach exactly where SP3 has no exact root.
+            let fit = sp3(&p1, &p2, &k, d, 0.0).fit;
+            assert_eq!(
+                miss > 0.0,
+                fit == Fit::LeastSquares,
+                "d {d}: {miss}, {fit:?}"
+            );
+        }
     }
 
     #[test]
