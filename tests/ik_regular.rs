@@ -79,7 +79,7 @@ fn residual(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> f64 {
 }
 
 type Lanes = fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>;
-type ByBranch = fn(&Geometry<6>, &Pose, &[f64; 6], WristPair) -> Candidates<6, 8>;
+type ByBranch = fn(&Geometry<6>, &Pose, &[f64; 6], WristPair, &mut Candidates<6, 8>);
 
 fn configuration(rng: &mut XorShift64) -> [f64; 6] {
     core::array::from_fn(|_| {
@@ -134,7 +134,8 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
             continue;
         }
         solved += 1;
-        let slow = by_branch(g, &pose, &[0.0; 6], WristPair::HalfTurn);
+        let mut slow = Candidates::default();
+        by_branch(g, &pose, &[0.0; 6], WristPair::HalfTurn, &mut slow);
         let (fast, slow) = (fast.as_slice(), slow.as_slice());
         let reached = slow.iter().any(|b| b.fit == Fit::Exact);
         let mut next = fast.iter().peekable();

@@ -132,24 +132,31 @@ fn finished<const N: usize, const K: usize>(
 
 fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
     let w = plan.wrist;
-    Some(match plan.solver.as_str() {
-        "three_parallel_two_intersecting" => {
-            families::three_parallel_two_intersecting(g, pose, free, w)
-        }
-        "spherical_two_parallel" => families::spherical_two_parallel(g, pose, free, w),
-        "spherical_two_intersecting" => families::spherical_two_intersecting(g, pose, free, w),
-        "spherical_two_intersecting_prismatic" => {
-            families::spherical_two_intersecting_prismatic(g, pose, free, w)
-        }
+    let solver = match plan.solver.as_str() {
+        "three_parallel_two_intersecting" => families::three_parallel_two_intersecting,
+        "spherical_two_parallel" => families::spherical_two_parallel,
+        "spherical_two_intersecting" => families::spherical_two_intersecting,
+        "spherical_two_intersecting_prismatic" => families::spherical_two_intersecting_prismatic,
         _ => return None,
-    })
+    };
+    let mut out = Candidates::default();
+    solver(g, pose, free, w, &mut out);
+    Some(out)
 }
 
 fn planar<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
     let g = geometry::<N>(pr.geometry);
     let free: [f64; N] = core::array::from_fn(|i| pr.free[i]);
     let pose = Pose::from_matrix(&pr.pose);
-    let c = families::planar(&g, &pose, &pr.plan.revolute, pr.plan.prismatic, &free);
+    let mut c = Candidates::default();
+    families::planar(
+        &g,
+        &pose,
+        &pr.plan.revolute,
+        pr.plan.prismatic,
+        &free,
+        &mut c,
+    );
     finished(&c, pr, checks)
 }
 

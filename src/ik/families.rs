@@ -5,7 +5,9 @@
 //!
 //! Each takes `free`: the joint values used where the pose leaves a joint undetermined
 //! (a singular configuration — UR or spherical wrist with `h4 ∥ h6`, wrist centre on
-//! axis 1). `ik_near` passes the current configuration, so the answer is continuous.
+//! axis 1). `ik_near` passes the current configuration, so the answer is continuous. Each
+//! pushes its candidates into the caller's `out` (empty before): the generated `ik` keeps
+//! them on its stack, where `finish` reads them.
 //!
 //! Joint numbers in the docs are 1-based, as in the robot's tables; `h`, `p` indices are
 //! 0-based.
@@ -134,20 +136,20 @@ fn with_wrist(
 }
 
 /// The candidates of a regular pose from the lanes of [`regular`] (for an orthogonal
-/// wrist), else those of `by_branch`.
+/// wrist), else those of `by_branch`, into `out` (empty before).
 #[inline]
 fn regular_first(
     g: &Geometry<6>,
     pose: &Pose,
     pair: WristPair,
     lanes: fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>,
-    by_branch: impl FnOnce() -> Candidates<6, 8>,
-) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
-    if pair == WristPair::HalfTurn && lanes(g, pose, &mut out).is_some() {
-        return out;
+    by_branch: impl FnOnce(&mut Candidates<6, 8>),
+    out: &mut Candidates<6, 8>,
+) {
+    // The lanes leave `out` untouched where they return `None`.
+    if !(pair == WristPair::HalfTurn && lanes(g, pose, out).is_some()) {
+        by_branch(out);
     }
-    by_branch()
 }
 
 /// **Spherical wrist, h2 ∥ h3** (PUMA 560, KUKA KR, ABB IRB 120/140):
@@ -164,10 +166,16 @@ pub fn spherical_two_parallel(
     pose: &Pose,
     free: &[f64; 6],
     pair: WristPair,
-) -> Candidates<6, 8> {
-    regular_first(g, pose, pair, regular::spherical_two_parallel, || {
-        spherical_two_parallel_by_branch(g, pose, free, pair)
-    })
+    out: &mut Candidates<6, 8>,
+) {
+    regular_first(
+        g,
+        pose,
+        pair,
+        regular::spherical_two_parallel,
+        |out| spherical_two_parallel_by_branch(g, pose, free, pair, out),
+        out,
+    );
 }
 
 /// [`spherical_two_parallel`] one branch after another, for every pose (the singular and
@@ -178,8 +186,8 @@ pub fn spherical_two_parallel_by_branch(
     pose: &Pose,
     free: &[f64; 6],
     pair: WristPair,
-) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
+    out: &mut Candidates<6, 8>,
+) {
     let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let [h1, h2, h3, ..] = g.h;
@@ -217,10 +225,9 @@ pub fn spherical_two_parallel_by_branch(
             );
             let r36 = || (r1 * q23.rot(&h2)).tr_mul(&r06);
             let q123 = [q1.theta, q2.theta, q3.theta];
-            with_wrist(&wrist, q123, (target, r36), fit, free, &mut out);
+            with_wrist(&wrist, q123, (target, r36), fit, free, out);
         }
     }
-    out
 }
 
 /// **Spherical wrist, h1 ∩ h2** (the shoulder axes meet):
@@ -234,8 +241,8 @@ pub fn spherical_two_intersecting(
     pose: &Pose,
     free: &[f64; 6],
     pair: WristPair,
-) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
+    out: &mut Candidates<6, 8>,
+) {
     let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let c12 = meet(g, 0, 1);
@@ -251,10 +258,9 @@ pub fn spherical_two_intersecting(
             let r36 = (q1.rot(&h1) * q2.rot(&h2) * r3).transpose() * r06;
             let q123 = [q1.theta, q2.theta, q3.theta];
             let wrist_of = (wrist.target(&r36), || r36);
-            with_wrist(&wrist, q123, wrist_of, t3.fit.and(f12), free, &mut out);
+            with_wrist(&wrist, q123, wrist_of, t3.fit.and(f12), free, out);
         }
     }
-    out
 }
 
 /// **Spherical wrist, h1 ∩ h2, joint 3 prismatic** (the Stanford arm):
@@ -267,8 +273,8 @@ pub fn spherical_two_intersecting_prismatic(
     pose: &Pose,
     free: &[f64; 6],
     pair: WristPair,
-) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
+    out: &mut Candidates<6, 8>,
+) {
     let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let c12 = meet(g, 0, 1);
@@ -298,10 +304,9 @@ pub fn spherical_two_intersecting_prismatic(
             let r36 = (q1.rot(&h1) * q2.rot(&h2)).transpose() * r06;
             let q123 = [q1.theta, q2.theta, q3];
             let wrist_of = (wrist.target(&r36), || r36);
-            with_wrist(&wrist, q123, wrist_of, fit.and(f12), free, &mut out);
+            with_wrist(&wrist, q123, wrist_of, fit.and(f12), free, out);
         }
     }
-    out
 }
 
 /// **h2 ∥ h3 ∥ h4, h5 ∩ h6** (Universal Robots):
@@ -324,14 +329,16 @@ pub fn three_parallel_two_intersecting(
     pose: &Pose,
     free: &[f64; 6],
     pair: WristPair,
-) -> Candidates<6, 8> {
+    out: &mut Candidates<6, 8>,
+) {
     regular_first(
         g,
         pose,
         pair,
         regular::three_parallel_two_intersecting,
-        || three_parallel_two_intersecting_by_branch(g, pose, free, pair),
-    )
+        |out| three_parallel_two_intersecting_by_branch(g, pose, free, pair, out),
+        out,
+    );
 }
 
 /// [`three_parallel_two_intersecting`] one branch after another, for every pose (the
@@ -342,8 +349,8 @@ pub fn three_parallel_two_intersecting_by_branch(
     pose: &Pose,
     free: &[f64; 6],
     pair: WristPair,
-) -> Candidates<6, 8> {
-    let mut out = Candidates::default();
+    out: &mut Candidates<6, 8>,
+) {
     let set_up = ThreeParallel::new(g, pose);
     let ([h1, h2, h3, h4, h5, h6], [p12, p23, p34, p45]) = (set_up.h, set_up.links);
     let (s3, s4, r06, p16) = (set_up.s3, set_up.s4, set_up.r06, set_up.p16);
@@ -469,7 +476,6 @@ pub fn three_parallel_two_intersecting_by_branch(
             }
         }
     }
-    out
 }
 
 /// What fixes the UR arm's last parallel joint.
@@ -514,8 +520,8 @@ pub fn planar<const N: usize>(
     revolute: &[usize],
     prismatic: Option<usize>,
     free: &[f64; N],
-) -> Candidates<N, 2> {
-    let mut out = Candidates::default();
+    out: &mut Candidates<N, 2>,
+) {
     let flat = |v: V3| V3::new(v.x, v.y, 0.0);
     let z = V3::z();
     let sign = |i: usize| g.h[i].z.signum();
@@ -543,7 +549,6 @@ pub fn planar<const N: usize>(
         }
         out.push(q, tb.fit.and(fa));
     }
-    out
 }
 
 #[cfg(test)]
@@ -552,15 +557,42 @@ mod tests {
     use crate::ik::geometry::examples::{puma, ur5};
     use crate::ik::subproblems::Fit;
 
+    type Solver = fn(&Geometry<6>, &Pose, &[f64; 6], WristPair, &mut Candidates<6, 8>);
+
+    /// What `solver` puts into an empty set of candidates.
+    fn solved(
+        solver: Solver,
+        g: &Geometry<6>,
+        pose: &Pose,
+        free: &[f64; 6],
+        pair: WristPair,
+    ) -> Candidates<6, 8> {
+        let mut out = Candidates::default();
+        solver(g, pose, free, pair, &mut out);
+        out
+    }
+
     #[test]
     fn ur5_all_eight_and_the_generating_one() {
         let g = ur5();
         let q = [0.3, -1.1, 1.4, -0.6, 0.9, 2.0];
         let pose = g.fk(&q);
-        let solve = three_parallel_two_intersecting(&g, &pose, &[0.0; 6], WristPair::Solve);
+        let solve = solved(
+            three_parallel_two_intersecting,
+            &g,
+            &pose,
+            &[0.0; 6],
+            WristPair::Solve,
+        );
         // The UR5's wrist is orthogonal (h2 ⟂ h5 ⟂ h6): the half-turn shortcut
         // gives the same eight solutions, in the same order.
-        let turned = three_parallel_two_intersecting(&g, &pose, &[0.0; 6], WristPair::HalfTurn);
+        let turned = solved(
+            three_parallel_two_intersecting,
+            &g,
+            &pose,
+            &[0.0; 6],
+            WristPair::HalfTurn,
+        );
         for sols in [solve, turned] {
             assert_eq!(sols.as_slice().len(), 8);
             for c in sols.as_slice() {
@@ -590,8 +622,20 @@ mod tests {
         let g = puma();
         let q = [0.4, -0.7, 0.9, 1.2, -0.8, 0.3];
         let pose = g.fk(&q);
-        let solve = spherical_two_parallel(&g, &pose, &[0.0; 6], WristPair::Solve);
-        let turned = spherical_two_parallel(&g, &pose, &[0.0; 6], WristPair::HalfTurn);
+        let solve = solved(
+            spherical_two_parallel,
+            &g,
+            &pose,
+            &[0.0; 6],
+            WristPair::Solve,
+        );
+        let turned = solved(
+            spherical_two_parallel,
+            &g,
+            &pose,
+            &[0.0; 6],
+            WristPair::HalfTurn,
+        );
         assert_eq!(solve.as_slice().len(), 8);
         assert_eq!(turned.as_slice().len(), 8);
         for (a, b) in solve.as_slice().iter().zip(turned.as_slice()) {
@@ -610,7 +654,13 @@ mod tests {
         let g = ur5();
         let q = [0.3, -1.1, 1.4, -0.6, 0.0, 2.0];
         let pose = g.fk(&q);
-        let sols = three_parallel_two_intersecting(&g, &pose, &q, WristPair::Solve);
+        let sols = solved(
+            three_parallel_two_intersecting,
+            &g,
+            &pose,
+            &q,
+            WristPair::Solve,
+        );
         let hit = sols
             .as_slice()
             .iter()
@@ -619,7 +669,13 @@ mod tests {
         assert_eq!(hit.fit, Fit::Free);
         // Any other value of the free joint is a solution too.
         for free in [q, [0.0; 6]] {
-            let sols = three_parallel_two_intersecting(&g, &pose, &free, WristPair::Solve);
+            let sols = solved(
+                three_parallel_two_intersecting,
+                &g,
+                &pose,
+                &free,
+                WristPair::Solve,
+            );
             assert!(!sols.as_slice().is_empty());
             for c in sols.as_slice() {
                 let t = g.fk(&c.q);

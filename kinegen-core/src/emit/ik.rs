@@ -216,23 +216,31 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
         "if !target.is_finite() || free.iter().any(|x| !x.is_finite()) { return ::kinegen::ik::IkSolutions::empty(); }".into(),
         "let g = self.ik_geometry();".into(),
     ]);
-    let call = |g: &str, free: &str| match family {
-        Family::Planar {
-            revolute,
-            prismatic,
-        } => format!("{solver}(&{g}, &target, &{revolute:?}, {prismatic:?}, {free})"),
-        _ => {
-            let pair = if model.plan.wrist_half_turn {
-                "HalfTurn"
-            } else {
-                "Solve"
-            };
-            format!("{solver}(&{g}, &target, {free}, ::kinegen::ik::families::WristPair::{pair})")
-        }
+    // The solver fills the candidates in place: returned by value they were copied once
+    // more (about 450 bytes) on every call.
+    let call = |g: &str, free: &str, out: &str| {
+        let args = match family {
+            Family::Planar {
+                revolute,
+                prismatic,
+            } => format!("&{g}, &target, &{revolute:?}, {prismatic:?}, {free}"),
+            _ => {
+                let pair = if model.plan.wrist_half_turn {
+                    "HalfTurn"
+                } else {
+                    "Solve"
+                };
+                format!("&{g}, &target, {free}, ::kinegen::ik::families::WristPair::{pair}")
+            }
+        };
+        format!(
+            "let mut {out} = ::kinegen::ik::solutions::Candidates::default();\n\
+             {solver}({args}, &mut {out});"
+        )
     };
     let (args, doc) = match locked {
         None => {
-            lets.push(format!("let candidates = {};", call("g", "free")));
+            lets.push(call("g", "free", "candidates"));
             (
                 format!("pose: &[[{f}; 4]; 4], free: &[{f}; {n}]"),
                 "Every solution of `pose`, with `free` giving the joints a singular pose leaves \
@@ -255,7 +263,7 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
                 "let free6: [f64; {}] = ::kinegen::ik::solutions::without(free, {k});",
                 n - 1
             ));
-            lets.push(format!("let c6 = {};", call("g6", "&free6")));
+            lets.push(call("g6", "&free6", "c6"));
             lets.push(format!(
                 "let candidates = ::kinegen::ik::solutions::with_locked::<{}, {n}, {}>(&c6, {k}, q_locked);",
                 n - 1,
