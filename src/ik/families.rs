@@ -135,20 +135,27 @@ fn with_wrist(
     }
 }
 
-/// The candidates of a regular pose from the lanes of [`regular`] (for an orthogonal
-/// wrist), else those of `by_branch`, into `out` (empty before).
+/// A family's solver for regular poses in lanes (see [`regular`]) and its branch-by-branch
+/// solver for every pose.
+type Solvers = (
+    fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>,
+    fn(&Geometry<6>, &Pose, &[f64; 6], WristPair, &mut Candidates<6, 8>),
+);
+
+/// The candidates of a regular pose from the lanes (for an orthogonal wrist), else those of
+/// the branch-by-branch solver, into `out` (empty before).
 #[inline]
 fn regular_first(
+    (lanes, by_branch): Solvers,
     g: &Geometry<6>,
     pose: &Pose,
+    free: &[f64; 6],
     pair: WristPair,
-    lanes: fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>,
-    by_branch: impl FnOnce(&mut Candidates<6, 8>),
     out: &mut Candidates<6, 8>,
 ) {
     // The lanes leave `out` untouched where they return `None`.
     if !(pair == WristPair::HalfTurn && lanes(g, pose, out).is_some()) {
-        by_branch(out);
+        by_branch(g, pose, free, pair, out);
     }
 }
 
@@ -168,14 +175,11 @@ pub fn spherical_two_parallel(
     pair: WristPair,
     out: &mut Candidates<6, 8>,
 ) {
-    regular_first(
-        g,
-        pose,
-        pair,
+    let solvers: Solvers = (
         regular::spherical_two_parallel,
-        |out| spherical_two_parallel_by_branch(g, pose, free, pair, out),
-        out,
+        spherical_two_parallel_by_branch,
     );
+    regular_first(solvers, g, pose, free, pair, out);
 }
 
 /// [`spherical_two_parallel`] one branch after another, for every pose (the singular and
@@ -331,14 +335,11 @@ pub fn three_parallel_two_intersecting(
     pair: WristPair,
     out: &mut Candidates<6, 8>,
 ) {
-    regular_first(
-        g,
-        pose,
-        pair,
+    let solvers: Solvers = (
         regular::three_parallel_two_intersecting,
-        |out| three_parallel_two_intersecting_by_branch(g, pose, free, pair, out),
-        out,
+        three_parallel_two_intersecting_by_branch,
     );
+    regular_first(solvers, g, pose, free, pair, out);
 }
 
 /// [`three_parallel_two_intersecting`] one branch after another, for every pose (the
