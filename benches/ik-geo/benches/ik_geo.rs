@@ -9,6 +9,11 @@
 //! solutions each returns, the exact ones (kinegen's fk within 1e-9 of the pose) and how
 //! often the generating configuration is among them.
 //!
+//! kinegen returns a least-squares branch only for a pose no branch reaches; ik-geo
+//! returns every branch, flagged least squares where it misses. On the UR5 the two sets
+//! differ (the other elbow out of reach on some poses), so a second group times both on
+//! the poses where ik-geo's every branch reaches — the same solutions from both.
+//!
 //! Run (needs CMake for NLopt): `cargo bench --manifest-path benches/ik-geo/Cargo.toml`.
 
 use std::hint::black_box;
@@ -163,6 +168,40 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             for (r, t) in &puma_targets {
                 black_box(geo_puma.ik(black_box(*r), black_box(*t)));
+            }
+        })
+    });
+    g.finish();
+    // The UR5 poses on which both return the same set: ik-geo's every branch exact.
+    let reached: Vec<_> = ur5_set
+        .iter()
+        .zip(&ur5_targets)
+        .filter(|(_, (r, t))| geo_ur5.ik(*r, *t).iter().all(|(_, ls)| !ls))
+        .collect();
+    let same_sets = reached
+        .iter()
+        .filter(|((pose, _), (r, t))| ur5.ik(pose).len() == geo_ur5.ik(*r, *t).len())
+        .count();
+    println!(
+        "UR5 poses every ik-geo branch reaches: {} of {POSES}; the same number of \
+         solutions from both on {same_sets} of them",
+        reached.len()
+    );
+    let mut g = c.benchmark_group(format!(
+        "ik_ur5_{}_poses_every_branch_reaches",
+        reached.len()
+    ));
+    g.bench_function("ur5_kinegen_ik", |b| {
+        b.iter(|| {
+            for ((pose, _), _) in &reached {
+                black_box(ur5.ik(black_box(pose)));
+            }
+        })
+    });
+    g.bench_function("ur5_ik_geo", |b| {
+        b.iter(|| {
+            for (_, (r, t)) in &reached {
+                black_box(geo_ur5.ik(black_box(*r), black_box(*t)));
             }
         })
     });
