@@ -16,7 +16,7 @@ use core::f64::consts::{FRAC_PI_2, PI};
 use kinegen::ik::families::{self, WristPair};
 use kinegen::ik::geometry::{rot, Geometry, Pose, V3};
 use kinegen::ik::regular;
-use kinegen::ik::solutions::{Candidates, NEAR_MISS};
+use kinegen::ik::solutions::{pose_matrix, residual, Candidates, NEAR_MISS};
 use kinegen::ik::subproblems::{wrap, Fit};
 use kinegen::ik::XorShift64;
 use kinegen_robots::*;
@@ -68,14 +68,6 @@ fn sigma_min(g: &Geometry<6>, q: &[f64; 6]) -> f64 {
         }
     }
     j.singular_values().min()
-}
-
-/// `max |fk(q) − pose|` over the rotation's and the position's entries (as `finish`'s
-/// residual), with the geometry's forward kinematics.
-fn residual(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> f64 {
-    let t = g.fk(q);
-    let r = (t.r - pose.r).abs().max();
-    r.max((t.p - pose.p).abs().max())
 }
 
 type Lanes = fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>;
@@ -147,7 +139,8 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
             };
             let Some(a) = next.next_if(|a| gap(a) <= NEAR_SINGULAR_SAME) else {
                 // Left out by the lanes: a branch that misses a pose another reaches.
-                let e = residual(g, &b.q, &pose);
+                // `finish`'s residual, on the geometry's own forward kinematics.
+                let e = residual(&pose_matrix(&g.fk(&b.q)), &pose);
                 assert!(
                     reached && b.fit == Fit::LeastSquares && e > NEAR_MISS,
                     "{name}, pose {n}: {b:?} (residual {e:e}) left out of {fast:?}"
