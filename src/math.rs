@@ -564,10 +564,8 @@ pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
         }
         // The special lanes are the NaN results: both zero (0/0), both infinite (∞/∞), a
         // NaN in. (One infinite gives u = 0 and the exact 0, ±π/2 or ±π of the full
-        // `atan2`.) `0 · r` is ±0 for any other: one comparison of their sum, no branch
-        // per lane.
-        let probe = r.iter().fold(0.0, |sum, v| sum + 0.0 * v);
-        if probe != 0.0 {
+        // `atan2`.) One comparison for all lanes, no branch per lane.
+        if !all_finite(&r) {
             for i in 0..L {
                 if atan2_octant(y[i], x[i]).3 {
                     r[i] = atan2(y[i], x[i]);
@@ -630,6 +628,13 @@ pub fn acos(x: f64) -> f64 {
     {
         libm::acos(x)
     }
+}
+
+/// Whether every `x` is finite, with one comparison and no branch per value: `0 · x` is
+/// ±0 for a finite `x` and NaN otherwise, and a sum of zeros is exactly zero.
+#[inline(always)]
+pub(crate) fn all_finite<'a>(xs: impl IntoIterator<Item = &'a f64>) -> bool {
+    xs.into_iter().fold(0.0, |sum, x| sum + 0.0 * x) == 0.0
 }
 
 /// `|x|` (core has it without std since Rust 1.85, but keep one spelling).

@@ -13,7 +13,7 @@
 //! serves; the solvers move points onto axis intersections ([`closest_points`]).
 
 use super::lanes::{Lanes, Vectors};
-use crate::math::{abs, sin_cos, sqrt};
+use crate::math::{abs, all_finite, sin_cos, sqrt};
 use nalgebra::{Matrix3, Vector3};
 
 /// A 3-vector.
@@ -58,14 +58,8 @@ impl Pose {
     /// Whether every entry is finite.
     #[inline]
     pub fn is_finite(&self) -> bool {
-        // `0 · x` is ±0 for a finite x and NaN otherwise, and sums of zeros are exact: one
-        // comparison for all twelve entries (instead of a branch each).
-        let zeros = self
-            .r
-            .iter()
-            .chain(self.p.iter())
-            .fold(0.0, |sum, x| sum + 0.0 * x);
-        zeros == 0.0
+        // One comparison for all twelve entries (instead of a branch each).
+        all_finite(self.r.iter().chain(self.p.iter()))
     }
 }
 
