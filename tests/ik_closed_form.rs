@@ -233,40 +233,126 @@ self_test!(planar_rr, PlanarRr, 22, task);
 self_test!(planar_rrr, PlanarRrr, 333, task);
 self_test!(scara, Scara, 600, task);
 
-/// The iiwa with joint 3 locked at its generating value: the 6 others in closed form.
-#[test]
-fn kuka_iiwa14_with_joint_3_locked() {
-    let robot = KukaIiwa14::default();
-    let mut rng = XorShift64::new(14);
-    let mut tally = Tally::default();
-    for _ in 0..CASES {
-        let q = configuration(&mut rng, &KukaIiwa14::LIMITS, &KukaIiwa14::REVOLUTE);
-        let pose = robot.fk(&q);
-        // Singular for the locked arm: its 6×6 Jacobian (joint 3's column removed).
-        let j = robot.jacobian(&q);
-        let mut m = [[0.0; 6]; 6];
-        for r in 0..6 {
-            for (c, k) in [0, 1, 3, 4, 5, 6].into_iter().enumerate() {
-                m[r][c] = j[r][k];
+/// A 7-joint arm's self-test with its free joint (`IK_FREE`) locked at the generating
+/// value: the six others in closed form. `snap_free`: the free joint is also snapped to
+/// `value` in every case (the regression at a value where the locked arm degenerates).
+/// Singular for the locked arm: its 6×6 Jacobian (the free joint's column removed).
+macro_rules! locked_self_test {
+    ($test:ident, $ty:ty, $seed:expr) => {
+        locked_self_test!($test, $ty, $seed, None);
+    };
+    ($test:ident, $ty:ty, $seed:expr, $snap_free:expr) => {
+        #[test]
+        fn $test() {
+            let robot = <$ty>::default();
+            let k = <$ty>::IK_FREE - 1;
+            let mut rng = XorShift64::new($seed);
+            let mut tally = Tally::default();
+            let snap_free: Option<f64> = $snap_free;
+            let cases = if snap_free.is_some() {
+                CASES / 5
+            } else {
+                CASES
+            };
+            for _ in 0..cases {
+                let mut q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
+                if let Some(v) = snap_free {
+                    q[k] = v;
+                }
+                let pose = robot.fk(&q);
+                let j = robot.jacobian(&q);
+                let mut m = [[0.0; 6]; 6];
+                for r in 0..6 {
+                    for (c, i) in (0..7).filter(|&i| i != k).enumerate() {
+                        m[r][c] = j[r][i];
+                    }
+                }
+                let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+                let sols = robot.ik_with(&pose, q[k]);
+                let near = robot.ik_near(&pose, &q);
+                check(
+                    stringify!($ty),
+                    &q,
+                    &pose,
+                    &sols,
+                    near,
+                    singular,
+                    false,
+                    &<$ty>::REVOLUTE,
+                    |x| robot.fk(x),
+                    pose_error,
+                );
+                assert!(
+                    sols.iter().all(|b| b.q[k] == q[k]),
+                    "the free joint stays locked"
+                );
+                tally.add(singular, &sols);
             }
+            eprintln!("{} (joint {} free): {tally:?}", stringify!($ty), k + 1);
         }
-        let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
-        let sols = robot.ik_with(&pose, q[2]);
-        let near = robot.ik_near(&pose, &q);
-        check(
-            "KukaIiwa14",
-            &q,
-            &pose,
-            &sols,
-            near,
-            singular,
-            false,
-            &KukaIiwa14::REVOLUTE,
-            |x| robot.fk(x),
-            pose_error,
-        );
-        assert!(sols.iter().all(|b| b.q[2] == q[2]), "joint 3 stays locked");
-        tally.add(singular, &sols);
-    }
-    eprintln!("KukaIiwa14 (joint 3 locked): {tally:?}");
+    };
+}
+
+kinegen::kinematics! {
+    /// The iiwa (DH) with joint 3 left free: the S-R-S arm's usual redundancy parameter
+    /// (the default is joint 7, which only turns the tool).
+    pub struct IiwaJoint3 = "robots/kuka_iiwa14.toml";
+    ik_free: 3,
+}
+
+kinegen::kinematics! {
+    /// The iiwa (DH) with joint 2 left free: at q2 = 0 the locked arm's axes 1 and 3 coincide.
+    pub struct IiwaJoint2 = "robots/kuka_iiwa14.toml";
+    ik_free: 2,
+}
+
+kinegen::kinematics! {
+    /// The iiwa as ROS-Industrial's URDF describes it: axes 1–2 and 3–4 offset by 0.436 mm,
+    /// so no S-R-S structure; joint 1 left free by default (joint 7's locking leaves no family).
+    pub struct IiwaUrdf = urdf("robots/urdf/kuka_lbr_iiwa_14_r820.urdf", base = "base_link", tip = "tool0");
+}
+
+kinegen::kinematics! {
+    /// The same URDF with joint 2 left free: at q2 = 0 the locked arm's axes 1 and 3 are
+    /// parallel, 0.436 mm apart (the regression: no solution at all there before).
+    pub struct IiwaUrdfJoint2 = urdf("robots/urdf/kuka_lbr_iiwa_14_r820.urdf", base = "base_link", tip = "tool0");
+    ik_free: 2,
+}
+
+locked_self_test!(kuka_iiwa14_joint_7_free, KukaIiwa14, 14);
+locked_self_test!(kuka_iiwa14_joint_3_free, IiwaJoint3, 143);
+locked_self_test!(kuka_iiwa14_joint_2_free, IiwaJoint2, 142);
+locked_self_test!(
+    kuka_iiwa14_joint_2_free_at_zero,
+    IiwaJoint2,
+    1420,
+    Some(0.0)
+);
+locked_self_test!(kuka_iiwa14_urdf, IiwaUrdf, 1414);
+locked_self_test!(kuka_iiwa14_urdf_joint_2_free, IiwaUrdfJoint2, 1422);
+locked_self_test!(
+    kuka_iiwa14_urdf_joint_2_free_at_zero,
+    IiwaUrdfJoint2,
+    14220,
+    Some(0.0)
+);
+locked_self_test!(panda_joint_7_free, Panda, 7);
+locked_self_test!(panda_from_urdf_joint_7_free, PandaUrdf, 77);
+
+#[test]
+fn the_free_joint_is_the_default_rule_or_the_users_choice() {
+    // Joint 7 only turns the tool: the six others' geometry is the same for every value.
+    assert_eq!(Panda::IK_FREE, 7);
+    assert_eq!(PandaUrdf::IK_FREE, 7);
+    assert_eq!(KukaIiwa14::IK_FREE, 7);
+    // The URDF's iiwa is not S-R-S (0.436 mm offsets): joint 7 leaves no family, joint 1
+    // (which only turns the base) does.
+    assert_eq!(IiwaUrdf::IK_FREE, 1);
+    assert_eq!(IiwaJoint3::IK_FREE, 3);
+    assert_eq!(IiwaUrdfJoint2::IK_FREE, 2);
+    assert!(
+        Panda::IK_FAMILY.contains("read from the tool"),
+        "{}",
+        Panda::IK_FAMILY
+    );
 }

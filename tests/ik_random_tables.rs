@@ -205,8 +205,9 @@ fn planar_like(rng: &mut XorShift64) -> String {
 
 /// What the engine gives the CLI for a chain: the plan and the geometry as numbers.
 fn plan(chain: &Chain) -> (Family, DynPlan, DynGeometry, Option<usize>) {
-    let ik = kinegen_core::kinematics::ik::model(chain, Options::default().budget.max_terms())
-        .expect("a family fits");
+    let ik =
+        kinegen_core::kinematics::ik::model(chain, Options::default().budget.max_terms(), None)
+            .expect("a family fits");
     let v = ik.values(chain);
     let (revolute, prismatic) = match &ik.plan.family {
         Family::Planar {
@@ -225,6 +226,7 @@ fn plan(chain: &Chain) -> (Family, DynPlan, DynGeometry, Option<usize>) {
         } else {
             WristPair::Solve
         },
+        reversed: ik.plan.reversed,
     };
     let g = DynGeometry {
         h: v.h,

@@ -218,7 +218,7 @@ fn top_level_keys_scalar_and_budget() {
     assert_eq!(
         errors(&src),
         [
-            "robot.toml:1: colour: unknown key `colour`: expected name, convention, params, joints, task, base, tool, scalar or budget",
+            "robot.toml:1: colour: unknown key `colour`: expected name, convention, params, joints, task, base, tool, scalar, budget or ik_free",
             "robot.toml:2: scalar: unknown scalar type `f16`: expected `f64` or `f32`",
             "robot.toml:12: budget.nodes: `nodes` must be a positive integer (at most 4294967295)",
             "robot.toml:13: budget.depth: unknown budget entry `depth`: expected nodes, iterations or time_ms",

@@ -26,6 +26,8 @@ pub struct PoseResult {
     pub singular: Vec<Vec<String>>,
     /// The answer of `ik_near`, when a current configuration was given.
     pub near: Option<Option<Vec<f64>>>,
+    /// A 7-joint arm: the joint left free (1-based) and the value it was locked at.
+    pub free_joint: Option<(usize, f64)>,
 }
 
 /// What the CLI needs to solve poses of one robot.
@@ -73,6 +75,7 @@ impl<'a> Solver<'a> {
                 } else {
                     WristPair::Solve
                 },
+                reversed: ik.plan.reversed,
             },
             geometry: DynGeometry {
                 h: v.h,
@@ -196,7 +199,9 @@ impl<'a> Solver<'a> {
             .collect();
         let singular = branches.iter().map(|b| self.vanishing(&b.q).1).collect();
         let near = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
+        let free_joint = self.plan.locked.map(|k| (k + 1, q_locked));
         Ok(PoseResult {
+            free_joint,
             branches,
             residuals,
             singular,
@@ -293,7 +298,8 @@ pub fn parse_near(text: &str, dof: usize) -> Result<Vec<f64>, CliError> {
     })
 }
 
-/// `{"family", "solutions", "exact", "singular", "residual", "within_limits"[, "near"]}`.
+/// `{"family", "solutions", "exact", "singular", "residual", "within_limits"[, "near"]
+/// [, "free_joint", "free_value"]}` (`free_joint` 1-based, for a 7-joint arm).
 pub fn to_json(family: &str, r: &PoseResult) -> Value {
     let mut v = json!({
         "family": family,
@@ -306,12 +312,20 @@ pub fn to_json(family: &str, r: &PoseResult) -> Value {
     if let Some(near) = &r.near {
         v["near"] = json!(near);
     }
+    if let Some((k, value)) = r.free_joint {
+        v["free_joint"] = json!(k);
+        v["free_value"] = json!(value);
+    }
     v
 }
 
 /// A readable table of one pose's solutions.
 pub fn to_table(family: &str, r: &PoseResult) -> String {
-    let mut s = format!("family: {family}\n{} solutions\n", r.branches.len());
+    let mut s = format!("family: {family}\n");
+    if let Some((k, value)) = r.free_joint {
+        let _ = writeln!(s, "joint {k} free, locked at {value}");
+    }
+    let _ = writeln!(s, "{} solutions", r.branches.len());
     for (i, b) in r.branches.iter().enumerate() {
         let q: Vec<String> = b.q.iter().map(|x| format!("{x:>10.6}")).collect();
         let mut flags = vec![if b.exact { "exact" } else { "nearest" }.to_string()];
@@ -470,6 +484,20 @@ pub fn show(chain: &Chain, derived: &Derived) -> String {
                 "\nat most {} solutions per pose; the family was decided exactly from the joint axes at q = 0",
                 ik.plan.max_solutions
             );
+            if let Some(k) = ik.plan.locked {
+                let all: Vec<String> = ik
+                    .plan
+                    .lockable
+                    .iter()
+                    .map(|i| (i + 1).to_string())
+                    .collect();
+                let _ = writeln!(
+                    s,
+                    "free joint: {} (its value is an input: --locked, or from --near); joints whose locking leaves a family: {} (choose with --free)",
+                    k + 1,
+                    all.join(", ")
+                );
+            }
             s
         }
         Err(why) => format!("{} — no closed-form IK: {why}\n", chain.name),

@@ -54,6 +54,10 @@ pub enum Command {
         /// Print a LaTeX document body (amsmath `align*`) instead of text.
         #[arg(long)]
         latex: bool,
+        /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free (default:
+        /// the engine's choice, said in the derivation; a TOML file may say `ik_free`).
+        #[arg(long)]
+        free: Option<usize>,
     },
     /// Print the Rust code `kinematics!` generates for the robot (`pub struct <Name>`).
     Rust {
@@ -62,6 +66,10 @@ pub enum Command {
         /// Which chain of a URDF, and how to snap its numbers.
         #[command(flatten)]
         urdf: UrdfArgs,
+        /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free (default:
+        /// the engine's choice, said in the derivation; a TOML file may say `ik_free`).
+        #[arg(long)]
+        free: Option<usize>,
     },
     /// Evaluate the generated formulas at a configuration.
     Eval {
@@ -112,6 +120,11 @@ pub enum Command {
         /// For a 7-joint arm: the locked joint's value (else taken from `--near`).
         #[arg(long, allow_hyphen_values = true)]
         locked: Option<f64>,
+        /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free (default:
+        /// the engine's choice, said in the derivation; a TOML file may say `ik_free`).
+        #[arg(long)]
+        free: Option<usize>,
+
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -126,8 +139,10 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             urdf,
             what,
             latex,
+            free,
         } => {
             let (chain, options) = robots::load(robot, urdf)?;
+            let options = with_free(options, &chain, *free)?;
             if *what == What::Model {
                 return Ok(model::show(&chain));
             }
@@ -138,8 +153,9 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             let dets = det_hook::determinants(&chain, &derived);
             Ok(formulas::show(&chain, &derived.model, &dets, *what, *latex))
         }
-        Command::Rust { robot, urdf } => {
+        Command::Rust { robot, urdf, free } => {
             let (chain, options) = robots::load(robot, urdf)?;
+            let options = with_free(options, &chain, *free)?;
             // Exactly the macro's call for `pub struct <Name>` (kinegen-macro's expand).
             Ok(generate(&chain, &ItemHeader::public(&chain.name), &options).pretty())
         }
@@ -186,9 +202,11 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             poses,
             near,
             locked,
+            free,
             json,
         } => {
             let (chain, options) = robots::load(robot, urdf)?;
+            let options = with_free(options, &chain, *free)?;
             let derived = derive(&chain, &options);
             let request = ik::Request {
                 pose: pose.as_deref(),
@@ -200,4 +218,19 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             ik::run(&chain, &derived, &request)
         }
     }
+}
+
+/// `options` with `--free k` (1-based) checked against the robot: exit 2 when the arm
+/// has no joint to leave free or no joint `k`.
+fn with_free(
+    mut options: kinegen_core::Options,
+    chain: &kinegen_core::Chain,
+    free: Option<usize>,
+) -> Result<kinegen_core::Options, CliError> {
+    if let Some(k) = free {
+        let k = kinegen_core::model::input::check_ik_free(k, chain.dof())
+            .map_err(|e| CliError::Usage(format!("--free: {}", e.replace("`ik_free`", "it"))))?;
+        options.ik_free = Some(k);
+    }
+    Ok(options)
 }

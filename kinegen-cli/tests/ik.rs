@@ -54,7 +54,8 @@ fn every_solution_reaches_the_pose_and_the_source_is_among_them() {
         ("stanford", None),
         ("kuka_kr6_r900", None),
         ("abb_irb120", None),
-        ("kuka_iiwa14", Some(2)),
+        ("kuka_iiwa14", Some(6)),
+        ("panda", Some(6)),
     ] {
         let (robot, _) = toml_file::load_file(&robot_file(name)).unwrap();
         let reference = NumericRobot::new(&robot).unwrap();
@@ -211,8 +212,58 @@ fn planar_arm_solves_its_task_rows() {
 #[test]
 fn show_what_ik_lists_the_derivation() {
     insta::assert_snapshot!("show_ik_ur5", stdout(&["show", "ur5", "--what", "ik"]));
-    let text = stdout(&["show", "panda", "--what", "ik"]);
-    assert!(text.contains("no closed-form IK"), "{text}");
+    // Read from the tool, joint 7 free by default; every joint that would do is listed.
+    insta::assert_snapshot!("show_ik_panda", stdout(&["show", "panda", "--what", "ik"]));
+    let text = stdout(&["show", "panda", "--what", "ik", "--free", "6"]);
+    assert!(text.contains("(joint 6 locked)"), "{text}");
+    let text = stdout(&["show", "panda", "--what", "ik", "--free", "2"]);
+    assert!(
+        text.contains("no closed-form IK")
+            && text.contains("joints whose locking leaves a family: 6, 7"),
+        "{text}"
+    );
+}
+
+/// `--free`, and `free_joint` / `free_value` in the JSON of a 7-joint arm.
+#[test]
+fn the_free_joint_is_chosen_and_reported() {
+    let q = [0.3, -0.5, 0.4, -1.9, 0.2, 1.5, 0.7];
+    let (robot, _) = toml_file::load_file(&robot_file("panda")).unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    let t = reference.fk(&q).unwrap();
+    let pose: Vec<String> = (0..4)
+        .flat_map(|i| (0..4).map(move |j| (i, j)))
+        .map(|(i, j)| t[(i, j)].to_string())
+        .collect();
+    let pose = pose.join(",");
+    for (free, value) in [("7", q[6]), ("6", q[5])] {
+        let out: Value = serde_json::from_str(&stdout(&[
+            "ik",
+            "panda",
+            "--pose",
+            &pose,
+            "--free",
+            free,
+            "--locked",
+            &value.to_string(),
+            "--json",
+        ]))
+        .unwrap();
+        assert_eq!(out["free_joint"], free.parse::<u64>().unwrap(), "{out}");
+        assert_eq!(out["free_value"], value, "{out}");
+        let found = out["solutions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|s| floats(s).iter().zip(q).all(|(a, b)| (a - b).abs() < 1e-9));
+        assert!(found, "--free {free}: {out}");
+    }
+    let e = fails(&["ik", "ur5", "--pose", &pose, "--free", "2"]);
+    assert!(e.contains("--free") && e.contains("7-joint"), "{e}");
+    let e = fails(&[
+        "ik", "panda", "--pose", &pose, "--free", "9", "--locked", "0",
+    ]);
+    assert!(e.contains("--free") && e.contains("joints 1 to 7"), "{e}");
 }
 
 #[test]
@@ -226,9 +277,11 @@ fn bad_requests_exit_2_with_a_reason() {
     assert!(e.contains("not a rotation"), "{e}");
     let e = fails(&["ik", "ur5", "--pose", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1"]);
     assert!(e.contains("last row"), "{e}");
-    let e = fails(&["ik", "panda", "--pose", rigid]);
-    assert!(e.contains("no closed-form inverse kinematics"), "{e}");
+    let e = fails(&["ik", "stanford", "--pose", rigid, "--free", "3"]);
+    assert!(e.contains("7-joint"), "{e}");
     let e = fails(&["ik", "kuka_iiwa14", "--pose", rigid]);
+    assert!(e.contains("--locked"), "{e}");
+    let e = fails(&["ik", "panda", "--pose", rigid]);
     assert!(e.contains("--locked"), "{e}");
     let e = fails(&["ik", "ur5", "--pose", rigid, "--near", "0,0"]);
     assert!(e.contains("--near"), "{e}");

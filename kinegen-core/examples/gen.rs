@@ -21,7 +21,11 @@ fn main() {
     let dt = t.elapsed();
     // The IK stage on its own (generate ran it too): what closed-form IK adds.
     let t = std::time::Instant::now();
-    let ik = kinegen_core::kinematics::ik::model(&robot.chain(), options.budget.max_terms());
+    let ik = kinegen_core::kinematics::ik::model(
+        &robot.chain(),
+        options.budget.max_terms(),
+        options.ik_free,
+    );
     let dt_ik = t.elapsed();
     println!("{}", g.pretty());
     eprintln!(

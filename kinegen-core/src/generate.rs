@@ -161,7 +161,7 @@ pub fn derive(chain: &Chain, options: &Options) -> Derived {
     };
     times.second_order_ms = lap(&mut t);
     // The IK family, decided exactly from the axes at q = 0, and its geometry.
-    let ik = ik::model(chain, options.budget.max_terms());
+    let ik = ik::model(chain, options.budget.max_terms(), options.ik_free);
     times.ik_ms = lap(&mut t);
     Derived {
         model,

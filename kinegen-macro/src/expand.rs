@@ -30,6 +30,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         keys,
         spans,
         shape_errors,
+        ik_free,
         ..
     } = input;
     let mut budget = budget;
@@ -55,6 +56,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
                     file: file.clone(),
                     urdf: None,
                     snap: None,
+                    ik_free,
                     robot: raw,
                     budget,
                     keys,
@@ -109,20 +111,40 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         Err(_) => return Err(syn::Error::new(ident.span(), "invalid robot")),
     };
 
+    let chain = robot.chain();
+    let free = match (&ik_free, &from_file, &file) {
+        (Some(written), _, _) => ik_free_in_macro(written, chain.dof())?,
+        (None, Some(f), Some(lit)) => f.ik_free_of(chain.dof()).map_err(|e| file_error(lit, e))?,
+        _ => None,
+    };
     Ok(emit(
-        &robot.chain(),
+        &chain,
         (attrs, vis, ident),
-        budget,
+        (budget, free),
         note_span,
         rebuild_on_change,
     ))
 }
 
-/// The item for `chain`, the notes as warnings at `note_span`, and `extra` tokens.
+/// `ik_free: k` written in the macro, checked against the robot's `dof`: the joint,
+/// 0-based, or the error at the entry.
+pub fn ik_free_in_macro(
+    (tokens, value): &(TokenStream, Result<usize, String>),
+    dof: usize,
+) -> syn::Result<Option<usize>> {
+    value
+        .clone()
+        .and_then(|k| input::check_ik_free(k, dof))
+        .map(Some)
+        .map_err(|msg| syn::Error::new_spanned(tokens, msg))
+}
+
+/// The item for `chain`, the notes as warnings at `note_span`, and `extra` tokens; the
+/// engine bounded by `budget`, a 7-joint arm's IK leaving joint `ik_free` (0-based) free.
 pub fn emit(
     chain: &Chain,
     (attrs, vis, ident): (Vec<Attribute>, Visibility, Ident),
-    budget: Option<Budget>,
+    (budget, ik_free): (Option<Budget>, Option<usize>),
     note_span: Span,
     extra: TokenStream,
 ) -> TokenStream {
@@ -133,6 +155,7 @@ pub fn emit(
     };
     let options = Options {
         budget: budget.unwrap_or_default(),
+        ik_free,
         ..Options::default()
     };
     let generated = kinegen_core::generate(chain, &header, &options);

@@ -4,8 +4,9 @@
 //! #[attrs] vis struct Name;                 // or: vis struct Name = "robots/x.toml";
 //!                                           // or: vis struct Name = urdf("x.urdf", base = "b", tip = "t");
 //! key: value, ...                           // name, convention, params, joints, task,
-//!                                           // base, tool, scalar, budget (URDF: name,
-//!                                           // params, task, scalar, budget, snap)
+//!                                           // base, tool, scalar, budget, ik_free (URDF:
+//!                                           // name, params, task, scalar, budget, snap,
+//!                                           // ik_free)
 //! ```
 //! Values are token expressions (`pi/2`, `-a2`, `0.5*L1`), turned into text for
 //! `kinegen_core::model::value::parse_value`; only the *shape* (which keys, lists, rows) is
@@ -38,6 +39,8 @@ pub struct Input {
     /// `snap: 1e-4` (URDF), with its tokens; `Err` with the message if it is not a
     /// number.
     pub snap: Option<(TokenStream, Result<f64, String>)>,
+    /// `ik_free: 7`, with its tokens; `Err` with the message if it is not a joint number.
+    pub ik_free: Option<(TokenStream, Result<usize, String>)>,
     /// The entries written in the macro.
     pub robot: RawRobot,
     /// `budget: { .. }`, if written.
@@ -136,6 +139,7 @@ impl Parse for Input {
             file,
             urdf,
             snap: None,
+            ik_free: None,
             robot: RawRobot::default(),
             budget: None,
             keys: Vec::new(),
@@ -161,6 +165,13 @@ impl Parse for Input {
                     });
                 r.spans.insert(Path::root().key("snap"), entry.tokens());
                 input.snap = Some((entry.tokens(), value));
+                continue;
+            }
+            if key == "ik_free" {
+                let text = expr_text(&entry.value);
+                let value = input::ik_free_value(text.trim().parse::<i128>().ok());
+                r.spans.insert(Path::root().key("ik_free"), entry.tokens());
+                input.ik_free = Some((entry.tokens(), value));
                 continue;
             }
             r.top(&entry, &mut input.robot, &mut input.budget);
@@ -315,7 +326,7 @@ impl Reader {
         self.spans.insert(p.clone(), e.tokens());
         if self.urdf && ["convention", "joints", "base", "tool"].contains(&key.as_str()) {
             let msg = format!(
-                "`{key}` belongs to a DH table; the URDF form takes name, params, task, scalar, budget and snap \
+                "`{key}` belongs to a DH table; the URDF form takes name, params, task, scalar, budget, snap and ik_free \
                  (base and tip go in `urdf(..)`)"
             );
             self.shape(p, e.key.to_token_stream(), msg);

@@ -12,7 +12,7 @@ use proc_macro2::TokenStream;
 use quote::ToTokens;
 use syn::LitStr;
 
-use crate::expand::{emit, file_error, read, track};
+use crate::expand::{emit, file_error, ik_free_in_macro, read, track};
 use crate::parse::Input;
 use crate::report;
 
@@ -72,10 +72,14 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         .filter(|_| input.keys.iter().any(|k| k == "budget"))
         .and_then(|t| t.clone().into_iter().next())
         .map_or(input.ident.span(), |t| t.span());
+    let free = match &input.ik_free {
+        Some(written) => ik_free_in_macro(written, chain.dof())?,
+        None => None,
+    };
     Ok(emit(
         &chain,
         (input.attrs, input.vis, input.ident),
-        input.budget,
+        (input.budget, free),
         note_span,
         track(&path),
     ))
@@ -125,11 +129,11 @@ pub fn expand_toml(from: FromToml, input: Input) -> syn::Result<TokenStream> {
             "params" => options.params = input.robot.params.clone(),
             "task" => options.task = input.robot.task.clone(),
             "scalar" => options.scalar = input.robot.scalar.clone(),
-            "budget" => {}
+            "budget" | "ik_free" => {}
             other => {
                 let e = DhError {
                     path: Path::root().key(other),
-                    message: format!("`{other}` cannot override a URDF robot's file: use name, params, task, scalar or budget"),
+                    message: format!("`{other}` cannot override a URDF robot's file: use name, params, task, scalar, budget or ik_free"),
                 };
                 return Err(report::error(&input.spans, &e));
             }
@@ -171,12 +175,19 @@ pub fn expand_toml(from: FromToml, input: Input) -> syn::Result<TokenStream> {
     } else {
         from.file.budget
     };
+    let free = match &input.ik_free {
+        Some(written) => ik_free_in_macro(written, chain.dof())?,
+        None => from
+            .file
+            .ik_free_of(chain.dof())
+            .map_err(|e| file_error(lit, e))?,
+    };
     let mut extra = track(from.toml_path);
     extra.extend(track(&urdf_path));
     Ok(emit(
         &chain,
         (input.attrs, input.vis, input.ident.clone()),
-        budget,
+        (budget, free),
         input.ident.span(),
         extra,
     ))

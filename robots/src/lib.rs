@@ -54,14 +54,15 @@ kinegen::kinematics! {
 kinegen::kinematics! {
     /// Franka Emika Panda (modified DH, flange and hand).
     ///
-    /// No closed-form IK: with any one joint locked, no remaining six axes form a family
-    /// of `kinegen::ik::families` (the compile-time note lists each broken condition); the
-    /// numerical solvers of `kinegen::ik` serve it.
-    #[allow(deprecated)]
+    /// Closed-form IK with joint 7 left free (`ik_with(pose, q7)`): axes 1, 2, 3 meet at
+    /// the shoulder and axes 5 and 6 meet, so the six others, read from the tool to the
+    /// base, are the spherical-wrist family with two intersecting axes (`IK_STEPS`).
     pub struct Panda = "panda.toml";
 }
 kinegen::kinematics! {
-    /// KUKA LBR iiwa 14 R820 (7 joints).
+    /// KUKA LBR iiwa 14 R820 (7 joints). Closed-form IK with joint 7 left free by default
+    /// (it only turns the tool); `ik_free: 3` in a `kinematics!` of this file leaves joint 3
+    /// free instead, the S-R-S arm's usual redundancy parameter.
     pub struct KukaIiwa14 = "kuka_iiwa14.toml";
 }
 kinegen::kinematics! {
@@ -95,8 +96,8 @@ kinegen::kinematics! {
 }
 kinegen::kinematics! {
     /// Franka Emika Panda from its URDF, `panda_link0` → `panda_hand_tcp` (the fingers,
-    /// one mimicking the other, are off the chain). No closed-form IK, as for [`Panda`].
-    #[allow(deprecated)]
+    /// one mimicking the other, are off the chain). Closed-form IK with joint 7 left free,
+    /// as for [`Panda`].
     pub struct PandaUrdf = "panda_urdf.toml";
 }
 kinegen::kinematics! {
@@ -199,9 +200,19 @@ pub const URDFS: &[(&str, &str, &str)] = &[
         include_str!("../urdf/kuka_kr6_r900.urdf"),
     ),
     (
+        "urdf/kuka_lbr_iiwa_14_r820.urdf",
+        "robots/urdf/kuka_lbr_iiwa_14_r820.urdf",
+        include_str!("../urdf/kuka_lbr_iiwa_14_r820.urdf"),
+    ),
+    (
         "urdf/panda.urdf",
         "robots/urdf/panda.urdf",
         include_str!("../urdf/panda.urdf"),
+    ),
+    (
+        "urdf/ur16e.urdf",
+        "robots/urdf/ur16e.urdf",
+        include_str!("../urdf/ur16e.urdf"),
     ),
     (
         "urdf/ur5.urdf",

@@ -8,6 +8,7 @@ use std::vec::Vec;
 
 use super::families::{self, WristPair};
 use super::geometry::{Geometry, Pose, M3, V3};
+use super::reversed::solve_reversed;
 use super::solutions::{finish, with_locked, without, Candidates, Check, IkSolutions};
 
 /// A robot's zero-configuration geometry as numbers (see [`Geometry`]).
@@ -38,6 +39,8 @@ pub struct DynPlan {
     pub locked: Option<usize>,
     /// How the second wrist solution is found (6-joint families).
     pub wrist: WristPair,
+    /// The family fits the chain read from the tool to the base ([`super::reversed`]).
+    pub reversed: bool,
 }
 
 /// One solution (see [`super::IkBranch`]).
@@ -140,7 +143,11 @@ fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<
         _ => return None,
     };
     let mut out = Candidates::default();
-    solver(g, pose, free, w, &mut out);
+    if plan.reversed {
+        solve_reversed(g, pose, free, |g, p, f, o| solver(g, p, f, w, o), &mut out);
+    } else {
+        solver(g, pose, free, w, &mut out);
+    }
     Some(out)
 }
 

@@ -55,6 +55,16 @@ impl Pose {
         }
     }
 
+    /// The inverse transform `(Rᵀ, −Rᵀ p)`.
+    #[inline]
+    pub fn inverse(&self) -> Pose {
+        let rt = self.r.transpose();
+        Pose {
+            r: rt,
+            p: -(rt * self.p),
+        }
+    }
+
     /// Whether every entry is finite.
     #[inline]
     pub fn is_finite(&self) -> bool {
@@ -218,6 +228,24 @@ impl<const N: usize> Geometry<N> {
         Pose {
             r: r * self.r_tool,
             p,
+        }
+    }
+
+    /// The same arm read from the tool to the base: joint `i` of the result is joint
+    /// `N − 1 − i` of `self`. With `T(q) = e^{ξ1 q1} ⋯ e^{ξN qN} M` (`M` the tool at
+    /// `q = 0`), `T(q)⁻¹ = M⁻¹ e^{−ξN qN} ⋯ e^{−ξ1 q1} = e^{ξ'1 qN} ⋯ e^{ξ'N q1} M⁻¹`
+    /// where `ξ'` is `−ξ` seen from the tool at `q = 0`: axis `−R_Mᵀ h`, point
+    /// `R_Mᵀ (p − p_M)`. So the reversed geometry's forward kinematics at the joints
+    /// reversed is the inverse of `self`'s pose: `g.reversed().fk(q_rev) =
+    /// g.fk(q).inverse()`.
+    pub fn reversed(&self) -> Geometry<N> {
+        let rt = self.r_tool.transpose();
+        Geometry {
+            h: core::array::from_fn(|i| -(rt * self.h[N - 1 - i])),
+            p: core::array::from_fn(|i| rt * (self.p[N - 1 - i] - self.p_tool)),
+            prismatic: core::array::from_fn(|i| self.prismatic[N - 1 - i]),
+            r_tool: rt,
+            p_tool: -(rt * self.p_tool),
         }
     }
 

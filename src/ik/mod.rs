@@ -6,7 +6,9 @@
 //!   and, when a family fits, generates `ik`, `ik_near` and `IK_FAMILY`. Every solution,
 //!   in a fixed-size [`IkSolutions`], each flagged exact or least squares, singular, and
 //!   within limits ([`solutions`]). Regular poses of the UR and PUMA families take
-//!   [`regular`]: the branches of each level side by side in [`lanes`].
+//!   [`regular`]: the branches of each level side by side in [`lanes`]. An arm that fits a
+//!   family only read from the tool to the base (the Panda) is solved through
+//!   [`reversed`].
 //! - Numerical ([`numeric`], re-exported here): Newton–Raphson, damped least squares,
 //!   Levenberg–Marquardt, Jacobian transpose, multi-start — for any robot.
 //!
@@ -20,6 +22,7 @@ pub mod geometry;
 pub mod lanes;
 pub mod numeric;
 pub mod regular;
+pub mod reversed;
 pub mod setup;
 pub mod solutions;
 pub mod subproblems;

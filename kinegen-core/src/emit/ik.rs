@@ -159,6 +159,31 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
         ty: "&'static str".into(),
         value: format!("{:?}", plan.name),
     }));
+    if let Some(k) = plan.locked {
+        let others: Vec<String> = plan
+            .lockable
+            .iter()
+            .filter(|&&i| i != k)
+            .map(|i| (i + 1).to_string())
+            .collect();
+        let also = if others.is_empty() {
+            "No other joint's locking leaves a closed-form family.".to_string()
+        } else {
+            format!(
+                "Locking joint {} would also leave a closed-form family (choose with `ik_free`).",
+                others.join(", ")
+            )
+        };
+        items.push(Item::Const(Const {
+            doc: format!(
+                "The joint (1-based, as in the table) the closed-form IK leaves free: \
+                 [`Self::ik_with`] takes its value. {also}"
+            ),
+            name: "IK_FREE",
+            ty: "usize".into(),
+            value: format!("{}", k + 1),
+        }));
+    }
     let steps: Vec<String> = plan.steps.iter().map(|s| format!("{s:?}")).collect();
     items.push(Item::Const(Const {
         doc: "The IK derivation: which subproblem gives which joint, in order.".into(),
@@ -218,25 +243,40 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     ]);
     // The solver fills the candidates in place: returned by value they were copied once
     // more (about 450 bytes) on every call.
+    let reversed = model.plan.reversed;
     let call = |g: &str, free: &str, out: &str| {
+        let (g_, target, free_, out_) = if reversed {
+            ("g", "t", "f", "o")
+        } else {
+            (g, "&target", free, out)
+        };
         let args = match family {
             Family::Planar {
                 revolute,
                 prismatic,
-            } => format!("&{g}, &target, &{revolute:?}, {prismatic:?}, {free}"),
+            } => format!("&{g_}, {target}, &{revolute:?}, {prismatic:?}, {free_}"),
             _ => {
                 let pair = if model.plan.wrist_half_turn {
                     "HalfTurn"
                 } else {
                     "Solve"
                 };
-                format!("&{g}, &target, {free}, ::kinegen::ik::families::WristPair::{pair}")
+                format!(
+                    "{}{g_}, {target}, {free_}, ::kinegen::ik::families::WristPair::{pair}",
+                    if reversed { "" } else { "&" }
+                )
             }
         };
-        format!(
-            "let mut {out} = ::kinegen::ik::solutions::Candidates::default();\n\
-             {solver}({args}, &mut {out});"
-        )
+        let solve = if reversed {
+            // Read from the tool to the base: the inverted pose on the reversed geometry,
+            // the joints put back in the robot's order.
+            format!(
+                "::kinegen::ik::reversed::solve_reversed(&{g}, &target, {free}, |g, t, f, o| {solver}({args}, o), &mut {out});"
+            )
+        } else {
+            format!("{solver}({args}, &mut {out_});")
+        };
+        format!("let mut {out} = ::kinegen::ik::solutions::Candidates::default();\n{solve}")
     };
     let (args, doc) = match locked {
         None => {

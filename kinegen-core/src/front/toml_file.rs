@@ -75,6 +75,7 @@ pub fn load_str(src: &str, file_label: &str) -> Result<(Robot, Options), LoadErr
         Ok(robot) if file.shape_errors.is_empty() => {
             let options = Options {
                 budget: file.budget.unwrap_or_default(),
+                ik_free: file.ik_free_of(robot.dof())?,
                 ..Options::default()
             };
             return Ok((robot, options));
@@ -180,6 +181,7 @@ pub fn load_description_str(
     })?;
     let options = Options {
         budget: file.budget.unwrap_or_default(),
+        ik_free: file.ik_free_of(chain.dof())?,
         ..Options::default()
     };
     Ok((Description::Urdf(Box::new(chain)), options))
@@ -196,6 +198,9 @@ pub struct RawFile {
     pub robot: RawRobot,
     /// The `[budget]` table, if given.
     pub budget: Option<Budget>,
+    /// `ik_free = 7`, if given: the joint (1-based) a 7-joint arm's closed-form IK leaves
+    /// free.
+    pub ik_free: Option<usize>,
     /// Top-level keys present in the file.
     pub keys: Vec<String>,
     /// `urdf = "…"` and the options for it, when the file names a URDF instead of a DH
@@ -221,6 +226,7 @@ impl RawFile {
         let mut file = RawFile {
             robot: RawRobot::default(),
             budget: None,
+            ik_free: None,
             keys: Vec::new(),
             urdf: None,
             shape_errors: Vec::new(),
@@ -260,8 +266,21 @@ impl RawFile {
         } else {
             reader.root(&root, &mut file.robot, &mut file.budget, &mut file.keys);
         }
+        file.ik_free = reader.ik_free(&root);
         file.shape_errors = reader.errors;
         Ok(file)
+    }
+
+    /// The file's `ik_free` checked against the robot's `dof` (0-based), or the error at
+    /// its line.
+    pub fn ik_free_of(&self, dof: usize) -> Result<Option<usize>, LoadError> {
+        let Some(k) = self.ik_free else {
+            return Ok(None);
+        };
+        let path = Path::root().key("ik_free");
+        input::check_ik_free(k, dof)
+            .map(Some)
+            .map_err(|message| LoadError::at(&self.label, self.line_of(&path), path, message))
     }
 
     /// 1-based line of the entry at `path`, or of the closest enclosing entry that has
@@ -452,6 +471,7 @@ impl Reader<'_> {
                 "base" => robot.base = self.entries(value, &p),
                 "tool" => robot.tool = self.entries(value, &p),
                 "budget" => *budget = self.budget(value, &p),
+                "ik_free" => {}
                 _ => self.err(p, input::unknown_top_level_key(key)),
             }
         }
@@ -499,6 +519,7 @@ impl Reader<'_> {
                     })
                 }
                 "budget" => *budget = self.budget(value, &p),
+                "ik_free" => {}
                 "convention" | "joints" | "tool" => self.err(
                     p,
                     format!(
@@ -614,6 +635,25 @@ impl Reader<'_> {
             out.push(joint);
         }
         out
+    }
+
+    /// `ik_free`, read from the root table (either kind of file), if given.
+    fn ik_free(&mut self, root: &Spanned<Node>) -> Option<usize> {
+        let Node::Table(entries) = root.get_ref() else {
+            return None;
+        };
+        let (_, value) = entries.iter().find(|(k, _)| k == "ik_free")?;
+        let n = match value.get_ref() {
+            Node::Int(i) => Some(i128::from(*i)),
+            _ => None,
+        };
+        match input::ik_free_value(n) {
+            Ok(k) => Some(k),
+            Err(message) => {
+                self.err(Path::root().key("ik_free"), message);
+                None
+            }
+        }
     }
 
     fn budget(&mut self, node: &Spanned<Node>, path: &Path) -> Option<Budget> {
@@ -743,7 +783,7 @@ time_ms = 300
         assert_eq!(
             errors(src),
             vec![
-                "r.toml:2: colour: unknown key `colour`: expected name, convention, params, joints, task, base, tool, scalar or budget",
+                "r.toml:2: colour: unknown key `colour`: expected name, convention, params, joints, task, base, tool, scalar, budget or ik_free",
                 "r.toml:3: task: `task` must be a list of rows such as [\"x\", \"y\", \"rz\"], found a string",
                 "r.toml:4: joints: `joints` must be a list of tables ([[joints]] sections), found a number",
                 "r.toml:6: budget.nodes: `nodes` must be a positive integer (at most 4294967295)",

@@ -28,7 +28,7 @@ use crate::model::validate::task_and_scalar;
 
 /// Top-level keys of a description that names a URDF.
 pub const URDF_KEYS: &[&str] = &[
-    "name", "urdf", "base", "tip", "snap", "params", "task", "scalar", "budget",
+    "name", "urdf", "base", "tip", "snap", "params", "task", "scalar", "budget", "ik_free",
 ];
 
 /// Keys the builder's errors may point at instead of the URDF's line.

@@ -18,6 +18,7 @@ pub const TOP_LEVEL_KEYS: &[&str] = &[
     "tool",
     "scalar",
     "budget",
+    "ik_free",
 ];
 
 /// Keys allowed in `budget`.
@@ -26,13 +27,54 @@ pub const BUDGET_KEYS: &[&str] = &["nodes", "iterations", "time_ms"];
 /// Message for a top-level key that is not in [`TOP_LEVEL_KEYS`].
 pub fn unknown_top_level_key(key: &str) -> String {
     format!(
-        "unknown key `{key}`: expected name, convention, params, joints, task, base, tool, scalar or budget"
+        "unknown key `{key}`: expected name, convention, params, joints, task, base, tool, scalar, budget or ik_free"
     )
 }
 
 /// Message for an entry given twice.
 pub fn given_twice(key: &str) -> String {
     format!("`{key}` given twice")
+}
+
+/// `ik_free` as written: the joint (1-based, as in the table) a 7-joint arm's closed-form
+/// IK leaves free. `value` is the entry as an integer, `None` if it is not one.
+///
+/// ```
+/// use kinegen_core::model::input::ik_free_value;
+/// assert_eq!(ik_free_value(Some(7)), Ok(7));
+/// assert!(ik_free_value(Some(0)).is_err());
+/// assert!(ik_free_value(None).is_err());
+/// ```
+pub fn ik_free_value(value: Option<i128>) -> Result<usize, String> {
+    match value {
+        Some(k) if (1..=64).contains(&k) => Ok(k as usize),
+        _ => Err(
+            "`ik_free` is the number of the joint the closed-form IK leaves free, e.g. `7`".into(),
+        ),
+    }
+}
+
+/// `ik_free = k` (1-based) against the robot's joint count: the joint, 0-based, or why
+/// it cannot be (only a 7-joint arm leaves a joint free).
+///
+/// ```
+/// use kinegen_core::model::input::check_ik_free;
+/// assert_eq!(check_ik_free(7, 7), Ok(6));
+/// assert!(check_ik_free(8, 7).is_err());
+/// assert!(check_ik_free(3, 6).is_err());
+/// ```
+pub fn check_ik_free(k: usize, dof: usize) -> Result<usize, String> {
+    if dof != 7 {
+        return Err(format!(
+            "`ik_free` is for a 7-joint arm, whose closed-form IK leaves one joint free; this one has {dof} joints"
+        ));
+    }
+    if k == 0 || k > dof {
+        return Err(format!(
+            "`ik_free` names joint {k}: the arm has joints 1 to {dof}"
+        ));
+    }
+    Ok(k - 1)
 }
 
 /// Set one `budget` entry. `value` is the entry as an integer, `None` if it is not one.

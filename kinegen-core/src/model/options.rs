@@ -101,6 +101,10 @@ pub struct Options {
     /// every rewritten expression is checked against the unsimplified one, so a wrong
     /// rule is caught and reported, never emitted (see [`crate::simplify::polish`]).
     pub extra_rewrites: Vec<(String, String)>,
+    /// The joint (0-based) a 7-joint arm's closed-form IK leaves free (`ik_free`, written
+    /// 1-based); `None`: the engine's default (see
+    /// [`crate::kinematics::ik::family::FREE_JOINT_ORDER`]).
+    pub ik_free: Option<usize>,
 }
 
 #[cfg(test)]

@@ -11,11 +11,22 @@
 //! | spherical wrist, two intersecting, prismatic 3 | as above, joint 3 prismatic | Stanford arm |
 //! | planar | every axis along world z; task rows x, y (+ rz, + z) | planar 2R/3R, SCARA |
 //!
-//! A 7-joint arm is tried with one joint locked (a run-time argument): the first of
-//! joints 3, 4, 5, 2, 6, 1, 7 whose locking leaves one of the 6-joint families — joint 3
-//! first because for an S-R-S arm (iiwa) it keeps both the shoulder's first two axes
-//! meeting and the wrist spherical, the usual redundancy parameter. Relations across the
-//! locked joint are tested with its angle left symbolic, so they hold for every value.
+//! Every 6-joint family is also matched on the chain **read from the tool to the base**
+//! (joints 6, 5, …, 1): a spherical *shoulder* (axes 1, 2, 3 meet) is the spherical wrist
+//! of the reversed chain, three parallel axes at the wrist are three parallel axes at its
+//! base. The relations tested (parallel, meeting, perpendicular) do not depend on the
+//! direction, so the reversed match is the same exact test on the labels reversed; the
+//! runtime solves the inverted pose on the inverted geometry
+//! (`kinegen::ik::reversed`) and maps the joints back.
+//!
+//! A 7-joint arm is solved with one joint left free (locked at a run-time value,
+//! `ik_with(pose, q_free)`). Every joint is tried; the one used is the user's choice
+//! (`ik_free`), else by default the last joint, then the first — locking either keeps the
+//! other six's geometry the same for every locked value (it only turns the tool, or the
+//! base), so the family cannot degenerate at particular locked values — else the first of
+//! joints 3, 4, 5, 2, 6 whose locking leaves a family (joint 3 first: for an S-R-S arm it
+//! keeps the shoulder's first two axes meeting and the wrist spherical). Relations across
+//! the locked joint are tested with its angle left symbolic, so they hold for every value.
 
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
@@ -51,6 +62,11 @@ pub struct IkPlan {
     pub family: Family,
     /// The joint locked (0-based) for a 7-joint arm.
     pub locked: Option<usize>,
+    /// The family matches the chain read from the tool to the base: the runtime solves
+    /// the inverted pose on the inverted geometry and reverses the joints back.
+    pub reversed: bool,
+    /// A 7-joint arm: every joint (0-based) whose locking leaves a family, in order.
+    pub lockable: Vec<usize>,
     /// One-line name for `IK_FAMILY`.
     pub name: String,
     /// The derivation, one line per step, with the robot's joint numbers.
@@ -95,10 +111,19 @@ impl Family {
 pub const OUT_OF_DOMAIN: &str = "no family is defined for this number of joints";
 
 /// The plan for `chain`, or why there is none (each family's first broken condition,
-/// naming the axes; [`OUT_OF_DOMAIN`] when no family applies to it at all).
-pub fn plan(chain: &Chain, max_terms: usize) -> Result<IkPlan, String> {
+/// naming the axes; [`OUT_OF_DOMAIN`] when no family applies to it at all). `free`: the
+/// joint (0-based) a 7-joint arm's closed form leaves free, when the user chose it.
+pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPlan, String> {
     let n = chain.dof();
     let kinds: Vec<JointKind> = chain.kinds().collect();
+    if let Some(k) = free {
+        if n != 7 || k >= n {
+            return Err(format!(
+                "`ik_free` names joint {}, but only a 7-joint arm leaves a joint free ({n} joints)",
+                k + 1
+            ));
+        }
+    }
     let full = chain.task.as_ref().is_none_or(|t| t.len() == 6);
     if !full {
         return planar(chain, max_terms, &kinds);
@@ -108,35 +133,83 @@ pub fn plan(chain: &Chain, max_terms: usize) -> Result<IkPlan, String> {
             let sym = SymbolicChain::at_zero(chain, max_terms, None);
             let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
             let labels: Vec<usize> = (0..6).collect();
-            six(&axes, &kinds, &labels)
-                .map(|(family, steps, half)| finish(family, None, steps, half))
+            either_way(&axes, &kinds, &labels).map(|m| finish(m, None, Vec::new(), None))
         }
-        7 => seven(chain, max_terms, &kinds),
+        7 => seven(chain, max_terms, &kinds, free),
         _ => Err(OUT_OF_DOMAIN.into()),
     }
 }
 
-fn finish(
+/// A 6-joint family matched on some labels: the family, its steps, whether the wrist is
+/// orthogonal, whether the labels were read from the tool.
+struct Match {
     family: Family,
-    locked: Option<usize>,
     steps: Vec<String>,
-    wrist_half_turn: bool,
-) -> IkPlan {
-    let name = match locked {
-        Some(k) => format!("{} (joint {} locked)", family.title(), k + 1),
-        None => family.title().to_string(),
+    half_turn: bool,
+    reversed: bool,
+}
+
+/// `why`: the line saying which joint a 7-joint arm leaves free and why.
+fn finish(m: Match, locked: Option<usize>, lockable: Vec<usize>, why: Option<String>) -> IkPlan {
+    let direction = if m.reversed {
+        ", read from the tool"
+    } else {
+        ""
     };
-    let max_solutions = match family {
+    let name = match locked {
+        Some(k) => format!("{}{direction} (joint {} locked)", m.family.title(), k + 1),
+        None => format!("{}{direction}", m.family.title()),
+    };
+    let max_solutions = match m.family {
         Family::Planar { .. } => 2,
         _ => 8,
     };
+    let mut steps: Vec<String> = why.into_iter().collect();
+    steps.extend(m.steps);
     IkPlan {
-        family,
+        family: m.family,
         locked,
+        reversed: m.reversed,
+        lockable,
         name,
         steps,
         max_solutions,
-        wrist_half_turn,
+        wrist_half_turn: m.half_turn,
+    }
+}
+
+/// The 6-joint families on `labels`, read from the base, else from the tool (the labels
+/// reversed; the relations tested do not depend on the direction).
+fn either_way(axes: &Axes, kinds: &[JointKind], labels: &[usize]) -> Result<Match, String> {
+    let forward = match six(axes, kinds, labels) {
+        Ok((family, steps, half_turn)) => {
+            return Ok(Match {
+                family,
+                steps,
+                half_turn,
+                reversed: false,
+            })
+        }
+        Err(e) => e,
+    };
+    let back: Vec<usize> = labels.iter().rev().copied().collect();
+    match six(axes, kinds, &back) {
+        Ok((family, steps, half_turn)) => {
+            let names: Vec<String> = back.iter().map(|i| (i + 1).to_string()).collect();
+            let mut all = vec![format!(
+                "read from the tool: the chain inverted — joints {} in that order, target T⁻¹ = (R06ᵀ, −R06ᵀ p0T), \
+                 axes and points seen from the tool at q = 0 — is the family below; its joint values are the robot's",
+                names.join(", ")
+            )];
+            all.extend(steps);
+            Ok(Match {
+                family,
+                steps: all,
+                half_turn,
+                reversed: true,
+            })
+        }
+        Err(e) => Err(format!("{forward}; read from the tool: {e}")),
     }
 }
 
@@ -242,29 +315,104 @@ fn six(
     Err(why.join("; "))
 }
 
-/// A 7-joint arm with one joint locked.
-fn seven(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan, String> {
-    let mut why = Vec::new();
-    for k in [2, 3, 4, 1, 5, 0, 6] {
-        let sym = SymbolicChain::at_zero(chain, max_terms, Some(k));
-        let Some(axes) = Axes::of(&sym) else {
-            why.push(format!("joint {} locked: over the term budget", k + 1));
-            continue;
-        };
-        let labels: Vec<usize> = (0..7).filter(|&i| i != k).collect();
-        match six(&axes, kinds, &labels) {
-            Ok((family, steps, half)) => return Ok(finish(family, Some(k), steps, half)),
-            Err(e) => {
-                let rest: Vec<String> = labels.iter().map(|i| (i + 1).to_string()).collect();
-                why.push(format!(
-                    "joint {} locked (family joints 1–6 = joints {}): {e}",
-                    k + 1,
-                    rest.join(", ")
-                ))
-            }
+/// The order in which a 7-joint arm's joints are tried as the free one by default (0-based):
+/// the last and the first (locking either leaves the other six's geometry the same for every
+/// locked value), then joint 3 (an S-R-S arm's usual redundancy parameter), 4, 5, 2, 6.
+pub const FREE_JOINT_ORDER: [usize; 7] = [6, 0, 2, 3, 4, 1, 5];
+
+/// A 7-joint arm with one joint locked: every joint tried, the user's `free` or the first
+/// of [`FREE_JOINT_ORDER`] that leaves a family used.
+fn seven(
+    chain: &Chain,
+    max_terms: usize,
+    kinds: &[JointKind],
+    free: Option<usize>,
+) -> Result<IkPlan, String> {
+    let tried: Vec<(usize, Result<Match, String>)> = (0..7)
+        .map(|k| {
+            let sym = SymbolicChain::at_zero(chain, max_terms, Some(k));
+            let labels: Vec<usize> = (0..7).filter(|&i| i != k).collect();
+            let m = match Axes::of(&sym) {
+                None => Err("over the term budget".to_string()),
+                Some(axes) => either_way(&axes, kinds, &labels).map_err(|e| {
+                    let rest: Vec<String> = labels.iter().map(|i| (i + 1).to_string()).collect();
+                    format!("family joints 1–6 = joints {}: {e}", rest.join(", "))
+                }),
+            };
+            (k, m)
+        })
+        .collect();
+    let lockable: Vec<usize> = tried
+        .iter()
+        .filter(|(_, m)| m.is_ok())
+        .map(|(k, _)| *k)
+        .collect();
+    let list = |ks: &[usize]| {
+        let v: Vec<String> = ks.iter().map(|k| (k + 1).to_string()).collect();
+        v.join(", ")
+    };
+    let others = |k: usize| {
+        let rest: Vec<usize> = lockable.iter().copied().filter(|&i| i != k).collect();
+        if rest.is_empty() {
+            String::new()
+        } else {
+            let joints = if rest.len() == 1 { "joint" } else { "joints" };
+            format!("; {joints} {} would also do (`ik_free`)", list(&rest))
         }
-    }
-    Err(why.join("; "))
+    };
+    let chosen = match free {
+        Some(k) => match &tried[k].1 {
+            Ok(_) => (
+                k,
+                format!(
+                    "joint {} left free (locked at q_locked), as `ik_free` asks{}",
+                    k + 1,
+                    others(k)
+                ),
+            ),
+            Err(e) => {
+                let can = if lockable.is_empty() {
+                    "no joint's locking leaves a family".to_string()
+                } else {
+                    format!("joints whose locking leaves a family: {}", list(&lockable))
+                };
+                return Err(format!("joint {} left free (`ik_free`): {e}; {can}", k + 1));
+            }
+        },
+        None => {
+            let Some(&k) = FREE_JOINT_ORDER.iter().find(|&&k| tried[k].1.is_ok()) else {
+                let why: Vec<String> = FREE_JOINT_ORDER
+                    .iter()
+                    .map(|&k| {
+                        format!(
+                            "joint {} locked ({})",
+                            k + 1,
+                            tried[k].1.as_ref().err().map_or("", |e| e)
+                        )
+                    })
+                    .collect();
+                return Err(why.join("; "));
+            };
+            let reason = match k {
+                6 => "the last joint only turns the tool, so the six others' geometry is the same for every value".to_string(),
+                0 => format!("the first joint only turns the base, so the six others' geometry is the same for every value (locking joint 7 leaves no family: {})", tried[6].1.as_ref().err().map_or("", |e| e)),
+                _ => "the first of joints 3, 4, 5, 2, 6 whose locking leaves a family; joints 7 and 1, whose locking keeps the geometry the same for every value, leave none".to_string(),
+            };
+            (
+                k,
+                format!(
+                    "joint {} left free (locked at q_locked): {reason}{}",
+                    k + 1,
+                    others(k)
+                ),
+            )
+        }
+    };
+    let (k, why) = chosen;
+    let mut tried = tried;
+    // `k` was chosen among the joints whose locking matched.
+    let m = tried.swap_remove(k).1?;
+    Ok(finish(m, Some(k), lockable, Some(why)))
 }
 
 /// Planar arms solving their task rows.
@@ -306,7 +454,13 @@ fn planar(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan
         revolute,
         prismatic: prismatic.first().copied(),
     };
-    Ok(finish(family, None, steps, false))
+    let m = Match {
+        family,
+        steps,
+        half_turn: false,
+        reversed: false,
+    };
+    Ok(finish(m, None, Vec::new(), None))
 }
 
 fn steps_ur(j: impl Fn(usize) -> usize) -> Vec<String> {

@@ -23,9 +23,10 @@ pub struct IkModel {
 }
 
 /// The IK model of `chain`, or why it has none (naming the axes that break each
-/// family's condition).
-pub fn model(chain: &Chain, max_terms: usize) -> Result<IkModel, String> {
-    let plan = plan(chain, max_terms)?;
+/// family's condition); `free`: the joint (0-based) a 7-joint arm leaves free, when the
+/// user chose it (`ik_free`).
+pub fn model(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkModel, String> {
+    let plan = plan(chain, max_terms, free)?;
     let zero = SymbolicChain::at_zero(chain, max_terms, None);
     let mut ids = Vec::new();
     for (h, p) in &zero.axes {
