@@ -48,7 +48,7 @@ const EPS: f64 = f64::EPSILON;
 /// moves the solution by at most ~3e-6 rad along a direction where the equation is
 /// flat to second order (≤ 1e-11 relative), and the branch is checked against `fk`
 /// afterwards anyway (its fit is `Double`).
-const MERGE_RELATIVE: f64 = 1e-11;
+pub(super) const MERGE_RELATIVE: f64 = 1e-11;
 
 /// Relative size (squared) of a vector's component off an axis below which the vector is
 /// taken to lie on the axis: the rotation about that axis leaves it where it is.

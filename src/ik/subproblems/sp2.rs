@@ -1,15 +1,18 @@
 //! **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
-//! about `k1` and of `p2` about `k2` meet (`k1 ∦ k2`). The meeting point from the two
-//! axes, then each angle by SP1.
+//! about `k1` and of `p2` about `k2` meet. The meeting point from the two axes, then each
+//! angle by SP1; on one axis (`k2 = ±k1`), only `θ1 ∓ θ2` is fixed.
 
-use super::sp1::sp1_angle;
-use super::{Fit, EPS, ROOT_MERGE};
+use super::sp1::{sp1, sp1_angle};
+use super::{Fit, EPS, MERGE_RELATIVE, ON_AXIS, ROOT_MERGE};
 use crate::ik::geometry::{sqrt0, Angle, V3};
 
 /// **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
-/// about `k1` and of `p2` about `k2` meet (`k1 ∦ k2`). Up to two pairs; a double root when
-/// the circles touch; least squares when they miss (or `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free
-/// (the caller's value) when its vector lies on its axis.
+/// about `k1` and of `p2` about `k2` meet. Up to two pairs; a double root when the circles
+/// touch (or their two meeting points are within rounding of the data upstream, as for
+/// SP3 and SP4: closer than `2√1e-11 ≈ 6e-6` of `‖p‖`); least squares when they miss (or
+/// `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free (the caller's value) when its vector lies on its
+/// axis. When the axes are one (`k2 = ±k1`: a 7-joint arm's locked joint can line them
+/// up), only `θ1 ∓ θ2` is fixed: `θ1` is free and `θ2` follows (one pair, [`Fit::Free`]).
 pub fn sp2(
     p1: &V3,
     p2: &V3,
@@ -21,6 +24,9 @@ pub fn sp2(
     let c12 = k1.dot(k2);
     let n = k1.cross(k2);
     let nn = n.norm_squared();
+    if nn <= ON_AXIS {
+        return one_axis(p1, p2, k1, c12.signum(), free);
+    }
     let (a1, a2) = (k1.dot(p1), k2.dot(p2));
     let alpha = (a1 - c12 * a2) / nn;
     let beta = (a2 - c12 * a1) / nn;
@@ -35,16 +41,19 @@ pub fn sp2(
     let g2 = (rr - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12) / nn;
     let base = k1 * alpha + k2 * beta;
     let terms = rr + alpha * alpha + beta * beta + 2.0 * (alpha * beta * c12).abs();
-    let zs: ([V3; 2], usize) = if g2.abs() <= ROOT_MERGE * EPS * terms / nn {
-        fit = fit.and(Fit::Double);
-        ([base, base], 1)
-    } else if g2 < 0.0 {
-        fit = Fit::LeastSquares;
-        ([base, base], 1)
-    } else {
-        let g = n * sqrt0(g2);
-        ([base + g, base - g], 2)
-    };
+    // |z± − base|² = g2 nn: a double root within rounding of the terms, or within
+    // MERGE_RELATIVE of ‖p‖² (errors upstream blur a double root more than its own terms).
+    let zs: ([V3; 2], usize) =
+        if g2.abs() * nn <= (ROOT_MERGE * EPS * terms).max(MERGE_RELATIVE * rr) {
+            fit = fit.and(Fit::Double);
+            ([base, base], 1)
+        } else if g2 < 0.0 {
+            fit = Fit::LeastSquares;
+            ([base, base], 1)
+        } else {
+            let g = n * sqrt0(g2);
+            ([base + g, base - g], 2)
+        };
     let zero = Angle {
         theta: 0.0,
         sin: 0.0,
@@ -58,6 +67,31 @@ pub fn sp2(
         fit = fit.and(mild(f1)).and(mild(f2));
     }
     (out, zs.1, fit)
+}
+
+/// SP2 on one axis, `k2 = σ k1`: `rot(k1, θ1 − σ θ2) p1 = p2`, so SP1 gives `θ1 − σ θ2`;
+/// `θ1` takes the caller's value (free) and `θ2 = σ (θ1 − φ)`.
+fn one_axis(
+    p1: &V3,
+    p2: &V3,
+    k1: &V3,
+    sigma: f64,
+    free: (f64, f64),
+) -> ([(Angle, Angle); 2], usize, Fit) {
+    let (phi, f) = sp1(p1, p2, k1, 0.0);
+    let t1 = Angle::new(free.0);
+    let t2 = if f == Fit::Free {
+        Angle::new(free.1)
+    } else {
+        Angle::new(super::wrap(sigma * (free.0 - phi)))
+    };
+    // Free dominates least squares in `Fit::and`'s order only when SP1 fitted.
+    let fit = if f == Fit::LeastSquares {
+        Fit::LeastSquares
+    } else {
+        Fit::Free
+    };
+    ([(t1, t2); 2], 1, fit)
 }
 
 /// A least-squares SP1 inside a larger subproblem only reflects the outer fit (already
@@ -91,5 +125,35 @@ mod tests {
         assert!(pairs[..n]
             .iter()
             .any(|(t1, t2)| (t1.theta - 0.4).abs() < 1e-12 && (t2.theta - 0.9).abs() < 1e-12));
+    }
+
+    #[test]
+    fn sp2_on_one_axis_takes_the_first_angle_free() {
+        let k = unit(0.2, -0.5, 1.0);
+        let p2 = V3::new(0.2, -0.4, 0.7);
+        for sigma in [1.0, -1.0] {
+            // rot(k, 0.3) p1 = rot(σk, 0.9) p2.
+            let p1 = rot(&k, -0.3) * rot(&(k * sigma), 0.9) * p2;
+            let (pairs, n, fit) = sp2(&p1, &p2, &k, &(k * sigma), (1.1, 0.0));
+            assert_eq!((n, fit), (1, Fit::Free));
+            let (t1, t2) = pairs[0];
+            assert_eq!(t1.theta, 1.1);
+            assert!((t1.rot(&k) * p1 - t2.rot(&(k * sigma)) * p2).norm() < 1e-13);
+            assert!(t1.theta.is_finite() && t2.theta.is_finite());
+        }
+    }
+
+    #[test]
+    fn sp2_merges_meeting_points_closer_than_the_relative_bound() {
+        // Circles that touch at (0.6, 0, 0.8) — p1's about z, p2's about x — with p2
+        // blurred by 1e-12: apart by ~1e-6 of ‖p‖, far above the terms' own rounding.
+        let (k1, k2) = (unit(0.0, 0.0, 1.0), unit(1.0, 0.0, 0.0));
+        let p1 = V3::new(0.6, 0.0, 0.8);
+        for blur in [1e-12, -1e-12] {
+            let p2 = V3::new(0.6, 0.0, 0.8 + blur);
+            let (pairs, n, fit) = sp2(&p1, &p2, &k1, &k2, (0.0, 0.0));
+            assert_eq!((n, fit), (1, Fit::Double), "{blur}");
+            assert!(pairs[0].0.theta.abs() < 1e-5 && pairs[0].1.theta.abs() < 1e-5);
+        }
     }
 }
