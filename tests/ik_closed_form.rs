@@ -228,7 +228,7 @@ kinegen::kinematics! {
 /// and `ik_near` must return the generating configuration.
 #[test]
 fn ur16e_urdf_at_the_wrist_singularity() {
-    let robot = Ur16eUrdf::default();
+    let robot = Ur16eUrdf;
     let mut rng = XorShift64::new(16);
     let mut tally = Tally::default();
     for _ in 0..2_000 {
