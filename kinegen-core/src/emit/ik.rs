@@ -144,6 +144,9 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
                 ),
             }));
             items.push(Item::Method(seeded(chain, model, &ty, Some(locked))));
+            if let (Some(steps), Scalar::F64) = (&plan.arm_angle, chain.scalar) {
+                items.extend(arm_angle_items(n, steps));
+            }
         }
     }
     items.push(Item::Method(geometry(chain, model)));
@@ -207,6 +210,79 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
             scalar: chain.scalar,
         },
     )
+}
+
+/// An S-R-S arm's solutions by arm angle: `ik_arm_angle`, `arm_angle`,
+/// `arm_angle_intervals` (f64 robots).
+fn arm_angle_items(n: usize, steps: &[String]) -> Vec<Item> {
+    let steps: Vec<String> = steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| format!("{}. {s}", i + 1))
+        .collect();
+    let custom = |args: &str, lets: Vec<String>, result: String| MethodBody::Custom {
+        args: args.into(),
+        lets,
+        result,
+    };
+    vec![
+        Item::Method(Method {
+            doc: format!(
+                "Every solution of `pose` whose **arm angle** is `psi` (radians): one per global \
+                 configuration (the signs of q2, q4, q6), at most 8 — the S-R-S arm's self-motion \
+                 in closed form. Flagged as [`Self::ik_with`]'s are; a singular parametrisation \
+                 (the shoulder–wrist line along axis 1, or the arm stretched) is flagged singular.\n\n\
+                 ```text\n{}\n```",
+                steps.join("\n")
+            ),
+            name: "ik_arm_angle",
+            rates: false,
+            ret: format!("::kinegen::ik::IkSolutions<{n}, 8>"),
+            body: custom(
+                "pose: &[[f64; 4]; 4], psi: f64",
+                vec![
+                    "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);".into(),
+                    "if !target.is_finite() || !psi.is_finite() { return ::kinegen::ik::IkSolutions::empty(); }".into(),
+                    "let g = self.ik_geometry();".into(),
+                    "let mut candidates = ::kinegen::ik::solutions::Candidates::default();".into(),
+                    format!("::kinegen::ik::families::srs_arm_angle(&g, &target, psi, ::kinegen::ik::families::WristPair::HalfTurn, &[0.0; {n}], &mut candidates);"),
+                ],
+                "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &Self::LIMITS, self)".into(),
+            ),
+        }),
+        Item::Method(Method {
+            doc: "The arm angle of configuration `q` (see [`Self::ik_arm_angle`]), in `(−π, π]`; \
+                  `None` where it is undefined (the shoulder–wrist line along axis 1, or the arm \
+                  stretched)."
+                .into(),
+            name: "arm_angle",
+            rates: false,
+            ret: "::core::option::Option<f64>".into(),
+            body: custom(
+                &format!("q: &[f64; {n}]"),
+                vec![],
+                "::kinegen::ik::families::arm_angle(&self.ik_geometry(), q)".into(),
+            ),
+        }),
+        Item::Method(Method {
+            doc: "The exact intervals of arm angle in which configuration `config` (`[q2 ≥ 0, \
+                  q4 ≥ 0, q6 ≥ 0]`, see `kinegen::ik::families::configuration`) of `pose` has every \
+                  joint inside `LIMITS`: each limit is met where a sinusoid of ψ vanishes, so a \
+                  user can pick ψ without sampling. Empty when that configuration cannot reach \
+                  the pose within the limits."
+                .into(),
+            name: "arm_angle_intervals",
+            rates: false,
+            ret: "::kinegen::ik::families::ArmAngleIntervals".into(),
+            body: custom(
+                "pose: &[[f64; 4]; 4], config: [bool; 3]",
+                vec![
+                    "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);".into(),
+                ],
+                "::kinegen::ik::families::arm_angle_intervals(&self.ik_geometry(), &target, config, &Self::LIMITS)".into(),
+            ),
+        }),
+    ]
 }
 
 fn scalar_name(scalar: Scalar) -> &'static str {

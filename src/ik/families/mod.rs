@@ -17,7 +17,8 @@
 //! `spherical_two_intersecting.rs` (spherical wrist, h1 ∩ h2, joint 3 revolute or
 //! prismatic: [`spherical_two_intersecting()`], [`spherical_two_intersecting_prismatic`]),
 //! `planar.rs` (every axis along world z: [`planar()`]); the spherical wrist the middle
-//! three end in is `wrist.rs`.
+//! three end in is `wrist.rs`. A 7-joint S-R-S arm (the iiwa) is also solved by its arm
+//! angle: `srs.rs` ([`srs_arm_angle`], [`arm_angle_intervals`]).
 
 use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
@@ -25,6 +26,7 @@ use super::solutions::Candidates;
 mod planar;
 mod spherical_two_intersecting;
 mod spherical_two_parallel;
+mod srs;
 mod ur;
 mod wrist;
 
@@ -33,6 +35,9 @@ pub use spherical_two_intersecting::{
     spherical_two_intersecting, spherical_two_intersecting_prismatic,
 };
 pub use spherical_two_parallel::{spherical_two_parallel, spherical_two_parallel_by_branch};
+pub use srs::{
+    arm_angle, arm_angle_intervals, configuration, srs_arm_angle, ArmAngleIntervals, Configuration,
+};
 pub use ur::{three_parallel_two_intersecting, three_parallel_two_intersecting_by_branch};
 
 /// How a solver finds the second of a wrist's two solutions (the two roots of q5).

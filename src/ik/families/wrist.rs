@@ -24,7 +24,11 @@ pub(super) struct Wrist {
 
 impl Wrist {
     pub(super) fn new(g: &Geometry<6>, pair: WristPair) -> Wrist {
-        let h = [g.h[3], g.h[4], g.h[5]];
+        Wrist::of_axes([g.h[3], g.h[4], g.h[5]], pair)
+    }
+
+    /// Any three axes meeting in one point (an S-R-S arm's shoulder too).
+    pub(super) fn of_axes(h: [V3; 3], pair: WristPair) -> Wrist {
         // h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.
         let q5 = Sp4::new(&h[0], &h[2], &h[1]);
         Wrist {
@@ -42,7 +46,7 @@ impl Wrist {
     /// is taken from the whole rotation. With [`WristPair::HalfTurn`] the second root of
     /// q5 takes `(q4 + π, q6 + π)` from the first.
     #[inline]
-    fn solve(
+    pub(super) fn solve(
         &self,
         (r36_h6, r36t_h4): (V3, V3),
         r36: impl Fn() -> M3,

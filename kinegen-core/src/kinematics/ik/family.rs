@@ -67,6 +67,9 @@ pub struct IkPlan {
     pub reversed: bool,
     /// A 7-joint arm: every joint (0-based) whose locking leaves a family, in order.
     pub lockable: Vec<usize>,
+    /// An S-R-S arm with an orthogonal shoulder and wrist (the iiwa): the derivation of
+    /// its solutions by arm angle (`ik_arm_angle`, `arm_angle_intervals`), else `None`.
+    pub arm_angle: Option<Vec<String>>,
     /// One-line name for `IK_FAMILY`.
     pub name: String,
     /// The derivation, one line per step, with the robot's joint numbers.
@@ -171,6 +174,7 @@ fn finish(m: Match, locked: Option<usize>, lockable: Vec<usize>, why: Option<Str
         locked,
         reversed: m.reversed,
         lockable,
+        arm_angle: None,
         name,
         steps,
         max_solutions,
@@ -412,7 +416,39 @@ fn seven(
     let mut tried = tried;
     // `k` was chosen among the joints whose locking matched.
     let m = tried.swap_remove(k).1?;
-    Ok(finish(m, Some(k), lockable, Some(why)))
+    let mut plan = finish(m, Some(k), lockable, Some(why));
+    let sym = SymbolicChain::at_zero(chain, max_terms, None);
+    if let Some(axes) = Axes::of(&sym) {
+        if kinds.iter().all(|&k| k == JointKind::Revolute) && srs(&axes) {
+            plan.arm_angle = Some(steps_arm_angle());
+        }
+    }
+    Ok(plan)
+}
+
+/// An S-R-S arm whose shoulder and wrist are orthogonal, decided exactly at `q = 0`:
+/// axes 1, 2, 3 meet, axes 5, 6, 7 meet, `h1 ∥ h3 ⟂ h2` and `h5 ∥ h7 ⟂ h6` (the KUKA
+/// iiwa). Its arm angle's intervals within the limits are then exact
+/// (`kinegen::ik::families::arm_angle_intervals`).
+fn srs(axes: &Axes) -> bool {
+    axes.concurrent(0, 1, 2)
+        && axes.concurrent(4, 5, 6)
+        && axes.parallel(0, 2)
+        && axes.perpendicular(0, 1)
+        && axes.parallel(4, 6)
+        && axes.perpendicular(4, 5)
+}
+
+fn steps_arm_angle() -> Vec<String> {
+    vec![
+        "S where axes 1, 2, 3 meet; W0 where axes 5, 6, 7 meet; E0 the point of axis 4 nearest S".into(),
+        "wrist centre W = p0T − R07 (pT − W0); u = (W − S)/‖W − S‖".into(),
+        "q4 — SP3: ‖(E0 − S) + rot(h4, q4) (W0 − E0)‖ = ‖W − S‖ (two roots)".into(),
+        "R03 = rot(u, ψ) R03(0): R03(0) takes the zero configuration's shoulder–wrist vector onto u and the elbow's offset from it onto e1, the part of h1 orthogonal to u (ψ = 0: the elbow in the plane of the shoulder–wrist line and axis 1, on h1's side; singular when u ∥ h1)".into(),
+        "q2 — SP4, q1 and q3 — SP1 on R03 (the shoulder as a spherical wrist; the other root of q2 by half turns)".into(),
+        "q6 — SP4, q5 and q7 — SP1 on R47 = (R03 R4)ᵀ R07".into(),
+        "each joint's sine and cosine are a sin ψ + b cos ψ + c up to a positive factor: a limit is met where such a sinusoid vanishes (arm_angle_intervals)".into(),
+    ]
 }
 
 /// Planar arms solving their task rows.
