@@ -5,7 +5,9 @@
 
 use std::fmt::Write;
 
-use kinegen::ik::dispatch::{solve, Checks, DynBranch, DynGeometry, DynPlan, DynProblem};
+use kinegen::ik::dispatch::{
+    solve, solve_arm_angle, Checks, DynBranch, DynGeometry, DynPlan, DynProblem,
+};
 use kinegen::ik::families::WristPair;
 use kinegen_core::kinematics::ik::family::Family;
 use kinegen_core::kinematics::ik::IkModel;
@@ -28,6 +30,8 @@ pub struct PoseResult {
     pub near: Option<Option<Vec<f64>>>,
     /// A 7-joint arm: the joint left free (1-based) and the value it was locked at.
     pub free_joint: Option<(usize, f64)>,
+    /// An S-R-S arm solved by its arm angle: the angle.
+    pub arm_angle: Option<f64>,
 }
 
 /// What the CLI needs to solve poses of one robot.
@@ -161,9 +165,24 @@ impl<'a> Solver<'a> {
         pose: [[f64; 4]; 4],
         near: Option<&[f64]>,
         locked: Option<f64>,
+        arm_angle: Option<f64>,
     ) -> Result<PoseResult, CliError> {
         let n = self.chain.dof();
+        if arm_angle.is_some() {
+            if self.ik.plan.arm_angle.is_none() {
+                return Err(CliError::Usage(format!(
+                    "`{}` has no arm angle: --arm-angle is for a 7-joint S-R-S arm (axes 1, 2, 3 and 5, 6, 7 meeting, orthogonal shoulder and wrist)",
+                    self.chain.name
+                )));
+            }
+            if locked.is_some() {
+                return Err(CliError::Usage(
+                    "--arm-angle and --locked each fix the arm's self-motion: give one".into(),
+                ));
+            }
+        }
         let q_locked = match (self.plan.locked, locked, near) {
+            (_, _, _) if arm_angle.is_some() => 0.0,
             (None, _, _) => 0.0,
             (Some(_), Some(x), _) => x,
             (Some(k), None, Some(q)) => q[k],
@@ -192,16 +211,24 @@ impl<'a> Solver<'a> {
             revolute: &self.revolute,
             limits: &self.limits,
         };
-        let branches = solve(&problem, &checks).map_err(|e| CliError::Usage(e.into()))?;
+        let branches = match arm_angle {
+            Some(psi) => solve_arm_angle(&problem, psi, &checks),
+            None => solve(&problem, &checks),
+        }
+        .map_err(|e| CliError::Usage(e.into()))?;
         let residuals = branches
             .iter()
             .map(|b| self.residual(&b.q, &pose))
             .collect();
         let singular = branches.iter().map(|b| self.vanishing(&b.q).1).collect();
         let near = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
-        let free_joint = self.plan.locked.map(|k| (k + 1, q_locked));
+        let free_joint = match arm_angle {
+            None => self.plan.locked.map(|k| (k + 1, q_locked)),
+            Some(_) => None,
+        };
         Ok(PoseResult {
             free_joint,
+            arm_angle,
             branches,
             residuals,
             singular,
@@ -299,7 +326,8 @@ pub fn parse_near(text: &str, dof: usize) -> Result<Vec<f64>, CliError> {
 }
 
 /// `{"family", "solutions", "exact", "singular", "residual", "within_limits"[, "near"]
-/// [, "free_joint", "free_value"]}` (`free_joint` 1-based, for a 7-joint arm).
+/// [, "free_joint", "free_value"][, "arm_angle"]}` (`free_joint` 1-based, for a 7-joint
+/// arm; `arm_angle` when it was solved by its arm angle).
 pub fn to_json(family: &str, r: &PoseResult) -> Value {
     let mut v = json!({
         "family": family,
@@ -316,6 +344,9 @@ pub fn to_json(family: &str, r: &PoseResult) -> Value {
         v["free_joint"] = json!(k);
         v["free_value"] = json!(value);
     }
+    if let Some(psi) = r.arm_angle {
+        v["arm_angle"] = json!(psi);
+    }
     v
 }
 
@@ -324,6 +355,9 @@ pub fn to_table(family: &str, r: &PoseResult) -> String {
     let mut s = format!("family: {family}\n");
     if let Some((k, value)) = r.free_joint {
         let _ = writeln!(s, "joint {k} free, locked at {value}");
+    }
+    if let Some(psi) = r.arm_angle {
+        let _ = writeln!(s, "arm angle {psi}");
     }
     let _ = writeln!(s, "{} solutions", r.branches.len());
     for (i, b) in r.branches.iter().enumerate() {
@@ -370,6 +404,8 @@ pub struct Request<'a> {
     pub near: Option<&'a str>,
     /// `--locked`.
     pub locked: Option<f64>,
+    /// `--arm-angle`.
+    pub arm_angle: Option<f64>,
     /// `--json`.
     pub json: bool,
 }
@@ -382,7 +418,7 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
         (Some(text), None) => {
             let pose = parse_pose(text)?;
             let near = req.near.map(|t| parse_near(t, n)).transpose()?;
-            let r = solver.solve(pose, near.as_deref(), req.locked)?;
+            let r = solver.solve(pose, near.as_deref(), req.locked, req.arm_angle)?;
             Ok(if req.json {
                 format!("{}\n", to_json(solver.family(), &r))
             } else {
@@ -427,7 +463,7 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
             let mut text = String::new();
             for (i, pose) in poses.iter().enumerate() {
                 let q = near.as_ref().map(|rows| rows[i].as_slice());
-                let r = solver.solve(*pose, q, req.locked)?;
+                let r = solver.solve(*pose, q, req.locked, req.arm_angle)?;
                 out.push(to_json(solver.family(), &r));
                 let _ = writeln!(text, "pose {i}: {}", to_table(solver.family(), &r));
             }
@@ -484,6 +520,16 @@ pub fn show(chain: &Chain, derived: &Derived) -> String {
                 "\nat most {} solutions per pose; the family was decided exactly from the joint axes at q = 0",
                 ik.plan.max_solutions
             );
+            if let Some(steps) = &ik.plan.arm_angle {
+                let _ = writeln!(
+                    s,
+                    "\nby arm angle ψ (--arm-angle; S-R-S arm with an orthogonal shoulder and wrist):\n"
+                );
+                for (i, step) in steps.iter().enumerate() {
+                    let _ = writeln!(s, "{}. {step}", i + 1);
+                }
+                s.push('\n');
+            }
             if let Some(k) = ik.plan.locked {
                 let all: Vec<String> = ik
                     .plan

@@ -120,6 +120,10 @@ pub enum Command {
         /// For a 7-joint arm: the locked joint's value (else taken from `--near`).
         #[arg(long, allow_hyphen_values = true)]
         locked: Option<f64>,
+        /// For a 7-joint S-R-S arm (the iiwa): every solution at this arm angle (radians)
+        /// instead of with a joint locked.
+        #[arg(long, allow_hyphen_values = true)]
+        arm_angle: Option<f64>,
         /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free (default:
         /// the engine's choice, said in the derivation; a TOML file may say `ik_free`).
         #[arg(long)]
@@ -202,6 +206,7 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             poses,
             near,
             locked,
+            arm_angle,
             free,
             json,
         } => {
@@ -213,6 +218,7 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 poses: poses.as_deref(),
                 near: near.as_deref(),
                 locked: *locked,
+                arm_angle: *arm_angle,
                 json: *json,
             };
             ik::run(&chain, &derived, &request)

@@ -258,6 +258,43 @@ fn the_free_joint_is_chosen_and_reported() {
             .any(|s| floats(s).iter().zip(q).all(|(a, b)| (a - b).abs() < 1e-9));
         assert!(found, "--free {free}: {out}");
     }
+    // The iiwa by its arm angle: eight exact solutions, `arm_angle` in the JSON.
+    let (iiwa, _) = toml_file::load_file(&robot_file("kuka_iiwa14")).unwrap();
+    let t = NumericRobot::new(&iiwa).unwrap().fk(&q).unwrap();
+    let iiwa_pose: Vec<String> = (0..4)
+        .flat_map(|i| (0..4).map(move |j| (i, j)))
+        .map(|(i, j)| t[(i, j)].to_string())
+        .collect();
+    let iiwa_pose = iiwa_pose.join(",");
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "kuka_iiwa14",
+        "--pose",
+        &iiwa_pose,
+        "--arm-angle",
+        "0.3",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(out["arm_angle"], 0.3, "{out}");
+    assert_eq!(out["solutions"].as_array().unwrap().len(), 8, "{out}");
+    assert!(
+        out["exact"].as_array().unwrap().iter().all(|e| e == true),
+        "{out}"
+    );
+    let e = fails(&["ik", "panda", "--pose", &pose, "--arm-angle", "0.3"]);
+    assert!(e.contains("no arm angle"), "{e}");
+    let e = fails(&[
+        "ik",
+        "kuka_iiwa14",
+        "--pose",
+        &iiwa_pose,
+        "--arm-angle",
+        "0.3",
+        "--locked",
+        "0",
+    ]);
+    assert!(e.contains("give one"), "{e}");
     let e = fails(&["ik", "ur5", "--pose", &pose, "--free", "2"]);
     assert!(e.contains("--free") && e.contains("7-joint"), "{e}");
     let e = fails(&[

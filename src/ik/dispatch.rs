@@ -204,3 +204,29 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
         _ => Err("closed-form IK is for 6 joints, or 7 with one locked"),
     }
 }
+
+/// Every solution of `pr.pose` whose arm angle is `psi`, for a 7-joint S-R-S arm with an
+/// orthogonal shoulder and wrist (the engine decides it: `IkPlan::arm_angle`); see
+/// [`families::srs_arm_angle`]. `pr.q_locked` is not used.
+pub fn solve_arm_angle(
+    pr: &DynProblem,
+    psi: f64,
+    checks: &Checks,
+) -> Result<Vec<DynBranch>, &'static str> {
+    let n = pr.geometry.h.len();
+    if n != 7 {
+        return Err("the arm angle is for 7-joint S-R-S arms");
+    }
+    if pr.free.len() != n || pr.revolute.len() != n || pr.limits.len() != n {
+        return Err("the free values, joint kinds and limits must have one entry per joint");
+    }
+    let pose = Pose::from_matrix(&pr.pose);
+    if !pose.is_finite() || pr.free.iter().any(|x| !x.is_finite()) || !psi.is_finite() {
+        return Ok(Vec::new());
+    }
+    let g = geometry::<7>(pr.geometry);
+    let free: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
+    let mut c = Candidates::<7, 8>::default();
+    families::srs_arm_angle(&g, &pose, psi, WristPair::HalfTurn, &free, &mut c);
+    Ok(finished(&c, pr, checks))
+}
