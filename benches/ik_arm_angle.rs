@@ -28,7 +28,10 @@ fn poses_count() -> usize {
     }
 }
 
-fn cases(robot: &KukaIiwa14) -> Vec<([[f64; 4]; 4], [f64; 7], f64)> {
+/// A pose, the configuration that made it and its arm angle.
+type Case = ([[f64; 4]; 4], [f64; 7], f64);
+
+fn cases(robot: &KukaIiwa14) -> Vec<Case> {
     let mut rng = XorShift64::new(2026);
     (0..poses_count())
         .map(|_| {
@@ -42,7 +45,7 @@ fn cases(robot: &KukaIiwa14) -> Vec<([[f64; 4]; 4], [f64; 7], f64)> {
         .collect()
 }
 
-fn check(robot: &KukaIiwa14, set: &[([[f64; 4]; 4], [f64; 7], f64)]) {
+fn check(robot: &KukaIiwa14, set: &[Case]) {
     let (mut solutions, mut found, mut inside) = (0, 0, 0);
     for (pose, q, psi) in set {
         let sols = robot.ik_arm_angle(pose, *psi);
@@ -65,8 +68,16 @@ fn check(robot: &KukaIiwa14, set: &[([[f64; 4]; 4], [f64; 7], f64)]) {
         let iv = robot.arm_angle_intervals(pose, configuration(q));
         inside += usize::from(iv.contains(*psi));
     }
-    assert_eq!(found, set.len(), "the generating configuration at its arm angle");
-    assert_eq!(inside, set.len(), "the generating arm angle inside its intervals");
+    assert_eq!(
+        found,
+        set.len(),
+        "the generating configuration at its arm angle"
+    );
+    assert_eq!(
+        inside,
+        set.len(),
+        "the generating arm angle inside its intervals"
+    );
     println!(
         "iiwa by arm angle: {solutions} exact solutions over {} poses; generating q found {found}, inside its intervals {inside}",
         set.len()

@@ -249,12 +249,104 @@ fn zeros([a, b, c]: Wave, out: &mut [f64; 64], n: &mut usize) {
     }
 }
 
+/// A spherical group `rot(a, θa) rot(b, θb) rot(c, θc) = R(ψ)` with `a ∥ c ⟂ b` (the
+/// iiwa's shoulder or wrist) in one global configuration (`sb`, the sign of `θb`): each
+/// joint's cosine and sine as waves of ψ. With `σ = a·c`: `cos θb = σ aᵀ R c`; with
+/// `x = b × c` (⟂ a), `R c` off a is `sin θb rot(a, θa) x`, so `(sin θa, cos θa) ∝ sb ((a ×
+/// x)·R c, x·R c)`; with `x' = b × a` (⟂ c), `Rᵀ a` off c is `−sin θb rot(c, −θc) x'`, so
+/// `(sin θc, cos θc) ∝ sb ((c × x')·Rᵀ a, −x'·Rᵀ a)` — the factor `|sin θb|` is positive.
+struct Spherical {
+    /// `cos θb`.
+    cos_b: Wave,
+    /// `(sin θa, cos θa)` and `(sin θc, cos θc)`, up to the same positive factor each.
+    outer: [[Wave; 2]; 2],
+    sb: f64,
+}
+
+impl Spherical {
+    fn new(parts: &[M3; 3], [a, b, c]: [V3; 3], sb: f64) -> Spherical {
+        let sigma = a.dot(&c).signum();
+        let (x, xp) = (b.cross(&c), b.cross(&a));
+        let (y, yp) = (a.cross(&x), c.cross(&xp));
+        Spherical {
+            cos_b: wave(parts, |m| sigma * a.dot(&(m * c))),
+            outer: [
+                [
+                    wave(parts, |m| sb * y.dot(&(m * c))),
+                    wave(parts, |m| sb * x.dot(&(m * c))),
+                ],
+                [
+                    wave(parts, |m| sb * yp.dot(&(m.transpose() * a))),
+                    wave(parts, |m| -sb * xp.dot(&(m.transpose() * a))),
+                ],
+            ],
+            sb,
+        }
+    }
+
+    /// Where a joint meets a limit `L` (`lsc`: each limit's sine and cosine): `cos θb =
+    /// cos L` (the middle joint), `sin θ cos L − cos θ sin L = 0` (the outer ones); the
+    /// mirror images these also catch only split an interval.
+    fn cuts(&self, lsc: &[[(f64, f64); 2]; 3], cuts: &mut [f64; 64], n: &mut usize) {
+        for (_, cl) in lsc[1] {
+            if cl.is_finite() {
+                let mut f = self.cos_b;
+                f[2] -= cl;
+                zeros(f, cuts, n);
+            }
+        }
+        for (k, [s, c]) in [(0, self.outer[0]), (2, self.outer[1])] {
+            for (sl, cl) in lsc[k] {
+                if sl.is_finite() {
+                    zeros(core::array::from_fn(|i| s[i] * cl - c[i] * sl), cuts, n);
+                }
+            }
+        }
+    }
+
+    /// Joint `k`'s (0, 1, 2: θa, θb, θc) sine and cosine, up to a positive factor, at the
+    /// arm angle whose sine and cosine are `sc`.
+    fn sin_cos(&self, k: usize, (s, c): (f64, f64)) -> (f64, f64) {
+        let at = |[a, b, k]: Wave| a * s + b * c + k;
+        match k {
+            1 => {
+                let cb = at(self.cos_b).clamp(-1.0, 1.0);
+                (self.sb * sqrt(1.0 - cb * cb), cb)
+            }
+            _ => {
+                let [ws, wc] = self.outer[k / 2];
+                (at(ws), at(wc))
+            }
+        }
+    }
+}
+
+/// Whether the angle whose sine and cosine are `(s, c)` (up to a positive factor) lies in
+/// `[lo, hi]` after whole turns, from `lsc` = their sines and cosines — signs only, no
+/// arctangent: with `w = hi − lo`, `sin(θ − lo) ≥ 0` and `sin(hi − θ) ≥ 0` when `w ≤ π`,
+/// either of them when `π < w < 2π`.
+fn inside_limits((s, c): (f64, f64), [lo, hi]: [f64; 2], lsc: &[(f64, f64); 2]) -> bool {
+    let w = hi - lo;
+    if !w.is_finite() || w >= core::f64::consts::TAU {
+        return true;
+    }
+    let [(sl, cl), (sh, ch)] = *lsc;
+    let after_lo = s * cl - c * sl >= 0.0;
+    let before_hi = c * sh - s * ch >= 0.0;
+    if w <= PI {
+        after_lo && before_hi
+    } else {
+        after_lo || before_hi
+    }
+}
+
 /// The exact intervals of arm angle in which configuration `config` of `pose` has every
 /// joint within `limits` (empty when the pose is out of reach for it, or q4 is outside
 /// its limits). For an S-R-S arm with an orthogonal shoulder and wrist (the engine
 /// decides it; see the module docs): each joint meets each limit where a sinusoid of ψ
 /// vanishes; between those angles (and their mirror images, which only split an
-/// interval) a joint stays on one side, decided at the midpoint with [`srs_arm_angle`].
+/// interval) a joint stays on one side, decided at the midpoint from the same sinusoids
+/// (no solve per piece: the signs of the same sinusoids at the limits).
 pub fn arm_angle_intervals(
     g: &Geometry<7>,
     pose: &Pose,
@@ -289,87 +381,44 @@ pub fn arm_angle_intervals(
     let shoulder = [r0 - uu * r0, ux * r0, uu * r0];
     let wrist = shoulder.map(|p| r4.transpose() * p.transpose() * r07);
     let h = &srs.h;
+    let sign = |b: bool| if b { 1.0 } else { -1.0 };
+    let groups = [
+        Spherical::new(&shoulder, [h[0], h[1], h[2]], sign(config[0])),
+        Spherical::new(&wrist, [h[4], h[5], h[6]], sign(config[2])),
+    ];
+    let joints = [[0, 1, 2], [4, 5, 6]];
+    // Each limit's sine and cosine, once (non-finite for a joint without limits).
+    let lsc: [[(f64, f64); 2]; 7] = core::array::from_fn(|i| {
+        limits[i].map(|l| {
+            if l.is_finite() {
+                crate::math::sin_cos(l)
+            } else {
+                (f64::NAN, f64::NAN)
+            }
+        })
+    });
     let mut cuts = [0.0; 64];
     let mut n = 0;
-    // Each joint's limits as zeros of waves. A spherical joint `rot(a, θa) rot(b, θb)
-    // rot(c, θc) = R` with a ∥ c ⟂ b (σ = a·c): `cos θb = σ aᵀ R c`; with `x = b × c`
-    // (⟂ a), `R c` off a is `sin θb rot(a, θa) x`, so `(sin θa, cos θa) ∝ sb ((a × x)·R c,
-    // x·R c)`; with `x' = b × a` (⟂ c), `Rᵀ a` off c is `−sin θb rot(c, −θc) x'`, so
-    // `(sin θc, cos θc) ∝ sb ((c × x')·Rᵀ a, −x'·Rᵀ a)` — sb the sign of sin θb, the
-    // configuration's. θ = L where `sin θ cos L − cos θ sin L = 0` (outer joints) or
-    // `cos θb = cos L` (the middle one); the mirror images these also catch only split
-    // an interval.
-    let spherical = |parts: &[M3; 3],
-                     [a, b, c]: [V3; 3],
-                     sb: f64,
-                     joints: [usize; 3],
-                     cuts: &mut [f64; 64],
-                     n: &mut usize| {
-        let sigma = a.dot(&c).signum();
-        let x = b.cross(&c);
-        let y = a.cross(&x);
-        let xp = b.cross(&a);
-        let yp = c.cross(&xp);
-        for l in limits[joints[1]] {
-            if l.is_finite() {
-                let mut f = wave(parts, |m| sigma * a.dot(&(m * c)));
-                f[2] -= crate::math::sin_cos(l).1;
-                zeros(f, cuts, n);
-            }
-        }
-        let first = |m: &M3| (sb * y.dot(&(m * c)), sb * x.dot(&(m * c)));
-        let last = |m: &M3| {
-            let v = m.transpose() * a;
-            (sb * yp.dot(&v), -sb * xp.dot(&v))
-        };
-        for (joint, sc) in [
-            (joints[0], &first as &dyn Fn(&M3) -> (f64, f64)),
-            (joints[2], &last),
-        ] {
-            for l in limits[joint] {
-                if l.is_finite() {
-                    let (sl, cl) = crate::math::sin_cos(l);
-                    let f = wave(parts, |m| {
-                        let (s, c) = sc(m);
-                        s * cl - c * sl
-                    });
-                    zeros(f, cuts, n);
-                }
-            }
-        }
-    };
-    let sign = |b: bool| if b { 1.0 } else { -1.0 };
-    spherical(
-        &shoulder,
-        [h[0], h[1], h[2]],
-        sign(config[0]),
-        [0, 1, 2],
-        &mut cuts,
-        &mut n,
-    );
-    spherical(
-        &wrist,
-        [h[4], h[5], h[6]],
-        sign(config[2]),
-        [4, 5, 6],
-        &mut cuts,
-        &mut n,
-    );
-    // Sort the cuts with the ends of [−π, π]; test each piece at its midpoint.
+    for (s, j) in groups.iter().zip(joints) {
+        s.cuts(&j.map(|i| lsc[i]), &mut cuts, &mut n);
+    }
+    // Sort the cuts with the ends of [−π, π]; test each piece at its midpoint, where
+    // every joint is read off its waves (q4 is the same for every ψ).
     let cuts = &mut cuts[..n];
     cuts.sort_unstable_by(f64::total_cmp);
     let mut edges = [0.0; 66];
     edges[0] = -PI;
     edges[1..=n].copy_from_slice(cuts);
     edges[n + 1] = PI;
+    if !within(q4.theta, limits[3]) {
+        return out;
+    }
     let inside = |psi: f64| {
-        let mut c = Candidates::<7, 8>::default();
-        srs_arm_angle(g, pose, psi, WristPair::Solve, &[0.0; 7], &mut c);
-        c.as_slice().iter().any(|k| {
-            configuration(&k.q) == config
-                && k.fit != Fit::LeastSquares
-                && (0..7).all(|i| within(k.q[i], limits[i]))
-        })
+        let sc = crate::math::sin_cos(psi);
+        groups
+            .iter()
+            .zip(joints)
+            .all(|(s, j)| (0..3).all(|k| inside_limits(s.sin_cos(k, sc), limits[j[k]], &lsc[j[k]])))
     };
     for k in 0..=n {
         let (lo, hi) = (edges[k], edges[k + 1]);
