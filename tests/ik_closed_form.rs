@@ -254,6 +254,36 @@ fn ur16e_urdf_at_the_wrist_singularity() {
     eprintln!("Ur16eUrdf at q5 = 0: {tally:?}");
 }
 
+/// The cylindrical arm with its reach at zero (q3 = 0: the tool point on axis 1, where
+/// the base rotation is free): an exact solution, and `ik_near` keeps the current q1.
+#[test]
+fn cylindrical_rpp_on_its_axis() {
+    let robot = CylindricalRpp::default();
+    let mut rng = XorShift64::new(33);
+    let mut tally = Tally::default();
+    for _ in 0..1_000 {
+        let mut q = configuration(&mut rng, &CylindricalRpp::LIMITS, &CylindricalRpp::REVOLUTE);
+        q[2] = 0.0;
+        let pose = robot.fk(&q);
+        let sols = robot.ik(&pose);
+        let near = robot.ik_near(&pose, &q);
+        check(
+            "CylindricalRpp",
+            &q,
+            &pose,
+            &sols,
+            near,
+            true,
+            true,
+            &CylindricalRpp::REVOLUTE,
+            |x| robot.fk(x),
+            task_gap(&[0, 1, 2]),
+        );
+        tally.add(true, &sols);
+    }
+    eprintln!("CylindricalRpp at q3 = 0: {tally:?}");
+}
+
 self_test!(ur16e_from_urdf, Ur16eUrdf, 1616);
 self_test!(ur3, Ur3, 3);
 self_test!(ur5, Ur5, 5);
@@ -269,6 +299,7 @@ self_test!(abb_irb140, AbbIrb140, 140);
 self_test!(planar_rr, PlanarRr, 22, task);
 self_test!(planar_rrr, PlanarRrr, 333, task);
 self_test!(scara, Scara, 600, task);
+self_test!(cylindrical_rpp, CylindricalRpp, 303, task);
 
 /// A 7-joint arm's self-test with its free joint (`IK_FREE`) locked at the generating
 /// value: the six others in closed form. `snap_free`: the free joint is also snapped to

@@ -75,7 +75,8 @@ fn frame(rng: &mut XorShift64, name: &str) -> String {
     )
 }
 
-/// `(type, a, alpha, d or theta)` per row, standard DH.
+/// `(type, a, alpha, d or theta)` per row, standard DH; type `gantry` is a prismatic
+/// joint with θ = π/2.
 type Row = (&'static str, f64, String, f64);
 
 /// The DH convention a table is written in.
@@ -114,7 +115,15 @@ fn table(
             .collect(),
     };
     for (&(kind, _, _, d), &(a, alpha)) in rows.iter().zip(&links) {
-        let off = offset(rng);
+        let mut off = offset(rng);
+        // A gantry's prismatic joint: its frame a quarter turn about its axis, so that
+        // the next axis, a quarter turn about the new x, leaves the plane of the last two.
+        let kind = if kind == "gantry" {
+            off = "pi/2".into();
+            "prismatic"
+        } else {
+            kind
+        };
         s.push_str(&format!(
             "[[joints]]\ntype = \"{kind}\"\na = {a}\nalpha = \"{alpha}\"\n"
         ));
@@ -201,6 +210,61 @@ fn planar_like(rng: &mut XorShift64) -> String {
         Some("[\"x\", \"y\", \"rz\"]"),
         Convention::Standard,
     )
+}
+
+/// A twist that leaves the next axis neither parallel nor orthogonal to this one's
+/// unless it is none: 0 or a sixth of a turn either way.
+fn slant(rng: &mut XorShift64) -> &'static str {
+    ["0", "pi/3", "-pi/3"][(rng.next_u64() % 3) as usize]
+}
+
+/// The 3-joint position cases (task x, y, z), by their solver's name.
+fn position_like(rng: &mut XorShift64, case: &str, convention: Convention) -> String {
+    let r = |a: f64, alpha: &str, d: f64| -> Row { ("revolute", a, alpha.to_string(), d) };
+    let p = |a: f64, alpha: &str, d: f64| -> Row { ("prismatic", a, alpha.to_string(), d) };
+    let rows: Vec<Row> = match case {
+        // a1 = 0: axes 1 and 2 meet.
+        "position_intersecting" => vec![
+            r(0.0, twist(rng), len(rng)),
+            r(len(rng), slant(rng), len(rng)),
+            r(len(rng), twist(rng), len(rng)),
+        ],
+        // a1 ≠ 0 with a quarter-turn twist: axes 1 and 2 skew; axes 2, 3 parallel.
+        "position_parallel" => vec![
+            r(len(rng), twist(rng), len(rng)),
+            r(len(rng), parallel_twist(rng), len(rng)),
+            r(len(rng), twist(rng), len(rng)),
+        ],
+        "position_intersecting_prismatic" => vec![
+            r(0.0, twist(rng), len(rng)),
+            r(len(rng), twist(rng), len(rng)),
+            p(0.0, twist(rng), len(rng).abs() + 0.3),
+        ],
+        // R P P: axis 2 parallel or slanted to axis 1 (not orthogonal), axis 3 across.
+        "position_one_revolute" if rng.next_f64() < 0.5 => vec![
+            r(len(rng), slant(rng), len(rng)),
+            p(len(rng), twist(rng), len(rng)),
+            p(len(rng), twist(rng), len(rng)),
+        ],
+        // P P R: the prismatic axes across each other, the revolute one slanted.
+        "position_one_revolute" => vec![
+            p(len(rng), twist(rng), len(rng)),
+            p(len(rng), slant(rng), len(rng)),
+            r(len(rng), twist(rng), len(rng)),
+        ],
+        // A gantry: each axis a quarter turn from the last, about an x turned a quarter
+        // turn from the last x.
+        "position_cartesian" => {
+            let g = |a: f64, alpha: &str, d: f64| -> Row { ("gantry", a, alpha.to_string(), d) };
+            vec![
+                g(len(rng), twist(rng), len(rng)),
+                g(len(rng), twist(rng), len(rng)),
+                g(len(rng), twist(rng), len(rng)),
+            ]
+        }
+        _ => unreachable!("{case}"),
+    };
+    table(&rows, rng, true, Some("[\"x\", \"y\", \"z\"]"), convention)
 }
 
 /// What the engine gives the CLI for a chain: the plan and the geometry as numbers.
@@ -389,8 +453,9 @@ macro_rules! family_test {
                 let src = $make(&mut rng);
                 let (robot, _) = load_str(&src, &format!("table{k}.toml")).unwrap();
                 let wrist = self_test(&robot, $solver, &mut rng, $task, true);
-                // Every family table's wrist is orthogonal (planar arms have none).
-                let orthogonal = $solver != "planar";
+                // Every family table's wrist is orthogonal (planar and position arms have
+                // none).
+                let orthogonal = $solver != "planar" && !$solver.starts_with("position");
                 assert_eq!(
                     wrist == WristPair::HalfTurn,
                     orthogonal,
@@ -444,6 +509,52 @@ family_test!(
     "spherical_two_intersecting_prismatic"
 );
 family_test!(planar_tables, 55, planar_like, "planar", Some(&[0, 1, 5]));
+
+/// Each 3-joint position case in both conventions (task rows x, y, z).
+macro_rules! position_test {
+    ($standard:ident / $modified:ident, $seed:expr, $solver:expr) => {
+        family_test!(
+            $standard,
+            $seed,
+            |r: &mut XorShift64| position_like(r, $solver, Convention::Standard),
+            $solver,
+            Some(&[0, 1, 2])
+        );
+        family_test!(
+            $modified,
+            $seed + 1,
+            |r: &mut XorShift64| position_like(r, $solver, Convention::Modified),
+            $solver,
+            Some(&[0, 1, 2])
+        );
+    };
+}
+
+position_test!(
+    position_intersecting_tables / position_intersecting_modified_tables,
+    71,
+    "position_intersecting"
+);
+position_test!(
+    position_parallel_tables / position_parallel_modified_tables,
+    73,
+    "position_parallel"
+);
+position_test!(
+    position_spherical_tables / position_spherical_modified_tables,
+    75,
+    "position_intersecting_prismatic"
+);
+position_test!(
+    position_one_revolute_tables / position_one_revolute_modified_tables,
+    77,
+    "position_one_revolute"
+);
+position_test!(
+    position_cartesian_tables / position_cartesian_modified_tables,
+    79,
+    "position_cartesian"
+);
 
 #[test]
 fn general_wrist_tables() {

@@ -140,7 +140,7 @@ impl<'a> Solver<'a> {
     /// The task rows a planar arm solves (`None`: the whole pose).
     fn task_rows(&self) -> Option<Vec<usize>> {
         match self.ik.plan.family {
-            Family::Planar { .. } => self
+            Family::Planar { .. } | Family::Position(_) => self
                 .chain
                 .task
                 .as_ref()

@@ -29,7 +29,7 @@ pub struct DynGeometry {
 /// Which solver, and its arguments.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DynPlan {
-    /// The function of [`families`] (`"three_parallel_two_intersecting"`, …).
+    /// The function of [`families`] (`"three_parallel_two_intersecting"`, …, `"position_…"`).
     pub solver: String,
     /// For `planar`: the revolute joints (0-based).
     pub revolute: Vec<usize>,
@@ -176,6 +176,28 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
     let pose = Pose::from_matrix(&pr.pose);
     if !pose.is_finite() || pr.free.iter().any(|x| !x.is_finite()) || !pr.q_locked.is_finite() {
         return Ok(Vec::new());
+    }
+    if let Some(case) = pr.plan.solver.strip_prefix("position_") {
+        if n != 3 {
+            return Err("position IK is for 3 joints");
+        }
+        let g = geometry::<3>(pr.geometry);
+        let free: [f64; 3] = core::array::from_fn(|i| pr.free[i]);
+        let mut c = Candidates::<3, 4>::default();
+        match case {
+            "intersecting" => families::position_intersecting(&g, &pose, &free, &mut c),
+            "parallel" => families::position_parallel(&g, &pose, &free, &mut c),
+            "intersecting_prismatic" => {
+                families::position_intersecting_prismatic(&g, &pose, &free, &mut c)
+            }
+            // The revolute joint is joint 1 or joint 3: the geometry says which.
+            "one_revolute" => {
+                families::position_one_revolute(&g, &pose, !g.prismatic[0], &free, &mut c)
+            }
+            "cartesian" => families::position_cartesian(&g, &pose, &free, &mut c),
+            _ => return Err("unknown solver"),
+        }
+        return Ok(finished(&c, pr, checks));
     }
     if pr.plan.solver == "planar" {
         return match n {

@@ -11,7 +11,7 @@
 use crate::chain::Chain;
 use crate::emit::code::{Body, Coder};
 use crate::emit::item::{Const, Item, Method, MethodBody};
-use crate::kinematics::ik::family::Family;
+use crate::kinematics::ik::family::{Family, Position};
 use crate::kinematics::ik::IkModel;
 use crate::model::robot::{JointKind, Scalar, TaskRow};
 
@@ -195,7 +195,7 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
         value: format!("&[{}]", steps.join(", ")),
     }));
     let task_rows = match &plan.family {
-        Family::Planar { .. } => chain
+        Family::Planar { .. } | Family::Position(_) => chain
             .task
             .as_ref()
             .map(|t| t.iter().map(|r| TaskRow::index(*r)).collect()),
@@ -331,6 +331,10 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
                 revolute,
                 prismatic,
             } => format!("&{g_}, {target}, &{revolute:?}, {prismatic:?}, {free_}"),
+            Family::Position(Position::OneRevolute { revolute_first }) => {
+                format!("&{g_}, {target}, {revolute_first}, {free_}")
+            }
+            Family::Position(_) => format!("&{g_}, {target}, {free_}"),
             _ => {
                 let pair = if model.plan.wrist_half_turn {
                     "HalfTurn"

@@ -16,7 +16,9 @@
 //! `spherical_two_parallel.rs` (spherical wrist, h2 ∥ h3: [`spherical_two_parallel()`]),
 //! `spherical_two_intersecting.rs` (spherical wrist, h1 ∩ h2, joint 3 revolute or
 //! prismatic: [`spherical_two_intersecting()`], [`spherical_two_intersecting_prismatic`]),
-//! `planar.rs` (every axis along world z: [`planar()`]); the spherical wrist the middle
+//! `planar.rs` (every axis along world z: [`planar()`]), `position.rs` (three joints
+//! placing the tool point: [`position_intersecting`] and the other position cases); the
+//! spherical wrist the middle
 //! three end in is `wrist.rs`. A 7-joint S-R-S arm (the iiwa) is also solved by its arm
 //! angle: `srs.rs` ([`srs_arm_angle`], [`arm_angle_intervals`]).
 
@@ -24,6 +26,7 @@ use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
 
 mod planar;
+mod position;
 mod spherical_two_intersecting;
 mod spherical_two_parallel;
 mod srs;
@@ -31,6 +34,10 @@ mod ur;
 mod wrist;
 
 pub use planar::planar;
+pub use position::{
+    position_cartesian, position_intersecting, position_intersecting_prismatic,
+    position_one_revolute, position_parallel,
+};
 pub use spherical_two_intersecting::{
     spherical_two_intersecting, spherical_two_intersecting_prismatic,
 };

@@ -98,6 +98,14 @@ impl Axes {
             .map(|r| crate::model::value::rat_to_f64(&r))
     }
 
+    /// The directions of axes `i`, `j`, `k` are linearly independent (`h_i · (h_j × h_k)
+    /// ≠ 0` identically).
+    pub fn independent(&self, i: usize, j: usize, k: usize) -> bool {
+        !self
+            .dot(&self.h[i], &self.cross(&self.h[j], &self.h[k]))
+            .is_zero()
+    }
+
     /// Axes `i` and `j` lie in one plane (they meet or are parallel).
     pub fn coplanar(&self, i: usize, j: usize) -> bool {
         let d = sub(&self.p[j], &self.p[i]);

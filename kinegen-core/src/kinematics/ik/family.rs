@@ -10,6 +10,7 @@
 //! | spherical wrist, two intersecting | h4, h5, h6 meet; h1 ∩ h2 | (iiwa with joint 3 locked) |
 //! | spherical wrist, two intersecting, prismatic 3 | as above, joint 3 prismatic | Stanford arm |
 //! | planar | every axis along world z; task rows x, y (+ rz, + z) | planar 2R/3R, SCARA |
+//! | position | three joints, task rows x, y, z: R R R with h1 ∩ h2 or h2 ∥ h3, R R P with h1 ∩ h2, R P P, P P R, P P P | elbow, spherical, cylindrical, Cartesian arms |
 //!
 //! Every 6-joint family is also matched on the chain **read from the tool to the base**
 //! (joints 6, 5, …, 1): a spherical *shoulder* (axes 1, 2, 3 meet) is the spherical wrist
@@ -53,6 +54,27 @@ pub enum Family {
         /// The prismatic joint, if any.
         prismatic: Option<usize>,
     },
+    /// Three joints placing the tool point (task rows x, y, z).
+    Position(Position),
+}
+
+/// The cases of [`Family::Position`] (`kinegen::ik::families::position_*`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Position {
+    /// R R R, h1 ∩ h2: q3 by SP3, (q1, q2) by SP2.
+    Intersecting,
+    /// R R R, h2 ∥ h3, h1 ∦ h2: q1 by SP4, q3 by SP3, q2 by SP1.
+    Parallel,
+    /// R R P, h1 ∩ h2: q3 from a quadratic, (q1, q2) by SP2.
+    IntersectingPrismatic,
+    /// One revolute joint, first (R P P, the cylindrical arm) or last (P P R), the
+    /// prismatic axes not parallel and not both orthogonal to the revolute one.
+    OneRevolute {
+        /// The revolute joint is joint 1 (else joint 3).
+        revolute_first: bool,
+    },
+    /// P P P, the axes independent.
+    Cartesian,
 }
 
 /// How a robot's IK is generated.
@@ -92,6 +114,11 @@ impl Family {
             Family::SphericalTwoIntersecting => "spherical_two_intersecting",
             Family::SphericalTwoIntersectingPrismatic => "spherical_two_intersecting_prismatic",
             Family::Planar { .. } => "planar",
+            Family::Position(Position::Intersecting) => "position_intersecting",
+            Family::Position(Position::Parallel) => "position_parallel",
+            Family::Position(Position::IntersectingPrismatic) => "position_intersecting_prismatic",
+            Family::Position(Position::OneRevolute { .. }) => "position_one_revolute",
+            Family::Position(Position::Cartesian) => "position_cartesian",
         }
     }
 
@@ -104,6 +131,29 @@ impl Family {
                 "spherical wrist, two intersecting, prismatic joint 3"
             }
             Family::Planar { .. } => "planar",
+            Family::Position(Position::Intersecting) => "position, h1 ∩ h2",
+            Family::Position(Position::Parallel) => "position, h2 ∥ h3",
+            Family::Position(Position::IntersectingPrismatic) => {
+                "position, h1 ∩ h2, prismatic joint 3"
+            }
+            Family::Position(Position::OneRevolute {
+                revolute_first: true,
+            }) => "position, cylindrical (R P P)",
+            Family::Position(Position::OneRevolute {
+                revolute_first: false,
+            }) => "position, P P R",
+            Family::Position(Position::Cartesian) => "position, Cartesian (P P P)",
+        }
+    }
+
+    /// Most solutions a pose can have.
+    fn max_solutions(&self) -> usize {
+        match self {
+            Family::Planar { .. } => 2,
+            Family::Position(Position::OneRevolute { .. }) => 2,
+            Family::Position(Position::Cartesian) => 1,
+            Family::Position(_) => 4,
+            _ => 8,
         }
     }
 }
@@ -129,7 +179,14 @@ pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPl
     }
     let full = chain.task.as_ref().is_none_or(|t| t.len() == 6);
     if !full {
-        return planar(chain, max_terms, &kinds);
+        let on_plane = planar(chain, max_terms, &kinds);
+        let mut rows = chain.task.clone().unwrap_or_default();
+        rows.sort();
+        if on_plane.is_err() && n == 3 && rows == [TaskRow::X, TaskRow::Y, TaskRow::Z] {
+            return position(chain, max_terms, &kinds)
+                .map_err(|e| format!("{}; {e}", on_plane.err().unwrap_or_default()));
+        }
+        return on_plane;
     }
     match n {
         6 => {
@@ -163,10 +220,7 @@ fn finish(m: Match, locked: Option<usize>, lockable: Vec<usize>, why: Option<Str
         Some(k) => format!("{}{direction} (joint {} locked)", m.family.title(), k + 1),
         None => format!("{}{direction}", m.family.title()),
     };
-    let max_solutions = match m.family {
-        Family::Planar { .. } => 2,
-        _ => 8,
-    };
+    let max_solutions = m.family.max_solutions();
     let mut steps: Vec<String> = why.into_iter().collect();
     steps.extend(m.steps);
     IkPlan {
@@ -492,6 +546,103 @@ fn planar(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan
     };
     let m = Match {
         family,
+        steps,
+        half_turn: false,
+        reversed: false,
+    };
+    Ok(finish(m, None, Vec::new(), None))
+}
+
+/// Three joints placing the tool point (task rows x, y, z): the cases of [`Position`],
+/// decided exactly at `q = 0`.
+fn position(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan, String> {
+    let sym = SymbolicChain::at_zero(chain, max_terms, None);
+    let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
+    let r = |i: usize| kinds[i] == JointKind::Revolute;
+    let (case, steps) = match (r(0), r(1), r(2)) {
+        (true, true, third) if axes.intersect(0, 1) && !axes.parallel(0, 1) => {
+            if third {
+                (
+                    Position::Intersecting,
+                    vec![
+                        "c12 where axes 1 and 2 meet; d = p − c12".to_string(),
+                        "q3 — SP3: ‖(p3 − c12) + rot(h3, q3) (pT − p3)‖ = ‖d‖ (two roots)".into(),
+                        "(q1, q2) — SP2: rot(−h1, q1) d = rot(h2, q2) ((p3 − c12) + R3 (pT − p3)) (two pairs; q1 free when p is on axis 1)".into(),
+                    ],
+                )
+            } else {
+                (
+                    Position::IntersectingPrismatic,
+                    vec![
+                        "c12 where axes 1 and 2 meet; d = p − c12, u = pT − c12".to_string(),
+                        "q3 — ‖u + q3 h3‖ = ‖d‖ (a quadratic, two roots)".into(),
+                        "(q1, q2) — SP2: rot(−h1, q1) d = rot(h2, q2) (u + q3 h3) (two pairs; q1 free when p is on axis 1)".into(),
+                    ],
+                )
+            }
+        }
+        (true, true, true) if axes.parallel(1, 2) && !axes.parallel(0, 1) => (
+            Position::Parallel,
+            vec![
+                "q1 — SP4: h2ᵀ rot(−h1, q1) (p − p1) = h2ᵀ (pT − p1) (two roots)".to_string(),
+                "q3 — SP3: ‖p23 + rot(h3, q3) p3T‖ = ‖rot(−h1, q1) (p − p1) − p12‖ (two roots)".into(),
+                "q2 — SP1: rot(h2, q2) (p23 + R3 p3T) = rot(−h1, q1) (p − p1) − p12".into(),
+            ],
+        ),
+        (first, false, last) if first != last => {
+            // One revolute joint, first or last; the prismatic axes a, b.
+            let (rv, [a, b]) = if first { (0, [1, 2]) } else { (2, [0, 1]) };
+            if axes.parallel(a, b) {
+                return Err(format!(
+                    "position: the prismatic axes {} and {} are parallel",
+                    a + 1,
+                    b + 1
+                ));
+            }
+            if axes.perpendicular(rv, a) && axes.perpendicular(rv, b) {
+                return Err(format!(
+                    "position: axis {} is orthogonal to both prismatic axes: the component of p along it is fixed",
+                    rv + 1
+                ));
+            }
+            let steps = if first {
+                vec![
+                    "n = h2 × h3 / ‖h2 × h3‖".to_string(),
+                    "q1 — SP4: nᵀ rot(−h1, q1) (p − p1) = nᵀ (pT − p1) (two roots)".into(),
+                    "(q2, q3) — q2 h2 + q3 h3 = rot(−h1, q1) (p − p1) − (pT − p1) (a 2 × 2 linear system)".into(),
+                ]
+            } else {
+                vec![
+                    "n = h1 × h2 / ‖h1 × h2‖".to_string(),
+                    "q3 — SP4: nᵀ rot(h3, q3) (pT − p3) = nᵀ (p − p3) (two roots)".into(),
+                    "(q1, q2) — q1 h1 + q2 h2 = (p − p3) − rot(h3, q3) (pT − p3) (a 2 × 2 linear system)".into(),
+                ]
+            };
+            (
+                Position::OneRevolute {
+                    revolute_first: first,
+                },
+                steps,
+            )
+        }
+        (false, false, false) => {
+            if !axes.independent(0, 1, 2) {
+                return Err("position: the prismatic axes are not independent".into());
+            }
+            (
+                Position::Cartesian,
+                vec!["(q1, q2, q3) — q1 h1 + q2 h2 + q3 h3 = p − pT (Cramer's rule)".to_string()],
+            )
+        }
+        _ => {
+            return Err(
+                "position: none of R R R with h1 ∩ h2 or h2 ∥ h3, R R P with h1 ∩ h2, R P P, P P R, P P P"
+                    .into(),
+            )
+        }
+    };
+    let m = Match {
+        family: Family::Position(case),
         steps,
         half_turn: false,
         reversed: false,

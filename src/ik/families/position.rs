@@ -1,0 +1,375 @@
+//! **Position arms** — three joints that place the tool point (task rows x, y, z; the
+//! tool's orientation follows and is not asked for): the elbow arm, the spherical
+//! (Stanford-type) arm, the cylindrical arm and the Cartesian gantry. The engine decides
+//! at expansion time, exactly, which of the five cases a chain is:
+//!
+//! | case | condition | steps |
+//! |---|---|---|
+//! | [`position_intersecting`] | R R R, h1 ∩ h2 | q3 — SP3, (q1, q2) — SP2 |
+//! | [`position_parallel`] | R R R, h2 ∥ h3, h1 ∦ h2 | q1 — SP4, q3 — SP3, q2 — SP1 |
+//! | [`position_intersecting_prismatic`] | R R P, h1 ∩ h2 | q3 — a quadratic, (q1, q2) — SP2 |
+//! | [`position_one_revolute`] | R P P or P P R, the prismatic axes not parallel | the revolute joint — SP4, the others — a 2 × 2 linear system |
+//! | [`position_cartesian`] | P P P, axes independent | a 3 × 3 linear system |
+//!
+//! With `p` the target point, `pT` the tool point at `q = 0`, `pi` a point on axis `i`
+//! and `Ri = rot(hi, qi)` (a prismatic joint adds `qi hi` after the rotations before it):
+//! `p = p1 + R1 (p2 − p1) + R1 R2 (p3 − p2) + R1 R2 R3 (pT − p3)`.
+
+use crate::ik::geometry::{meet, Geometry, Pose, V3};
+use crate::ik::solutions::Candidates;
+use crate::ik::subproblems::{sp1, sp2, sp3, sp4, Fit, ROOT_MERGE};
+
+/// **R R R, h1 ∩ h2** (at `c12`; the anthropomorphic arm without offsets):
+///
+/// 1. q3 — SP3: `‖(p3 − c12) + R3 (pT − p3)‖ = ‖p − c12‖` (joints 1, 2 turn about c12)
+/// 2. (q1, q2) — SP2: `rot(−h1, q1) (p − c12) = rot(h2, q2) ((p3 − c12) + R3 (pT − p3))`
+///
+/// Up to four solutions; q1 is free when `p` lies on axis 1.
+pub fn position_intersecting<const K: usize>(
+    g: &Geometry<3>,
+    pose: &Pose,
+    free: &[f64; 3],
+    out: &mut Candidates<3, K>,
+) {
+    let [h1, h2, h3] = g.h;
+    let c12 = meet(g, 0, 1);
+    let (p23, p3t) = (g.p[2] - c12, g.p_tool - g.p[2]);
+    let d = pose.p - c12;
+    let t3 = sp3(&p3t, &(-p23), &h3, d.norm(), free[2]);
+    for q3 in t3.as_slice() {
+        let arm = p23 + q3.rot(&h3) * p3t;
+        let (t12, n, f12) = sp2(&d, &arm, &(-h1), &h2, (free[0], free[1]));
+        for (q1, q2) in &t12[..n] {
+            out.push([q1.theta, q2.theta, q3.theta], t3.fit.and(f12));
+        }
+    }
+}
+
+/// **R R R, h2 ∥ h3, h1 ∦ h2** (the elbow arm with a shoulder offset; PUMA's first three
+/// joints):
+///
+/// 1. q1 — SP4: `h2ᵀ rot(−h1, q1) (p − p1) = h2ᵀ (pT − p1)` (R2, R3 keep h2's component)
+/// 2. q3 — SP3: `‖(p3 − p2) + R3 (pT − p3)‖ = ‖rot(−h1, q1) (p − p1) − (p2 − p1)‖`
+/// 3. q2 — SP1: `rot(h2, q2) ((p3 − p2) + R3 (pT − p3)) = rot(−h1, q1) (p − p1) − (p2 − p1)`
+///
+/// Up to four solutions.
+pub fn position_parallel<const K: usize>(
+    g: &Geometry<3>,
+    pose: &Pose,
+    free: &[f64; 3],
+    out: &mut Candidates<3, K>,
+) {
+    let [h1, h2, h3] = g.h;
+    let (p12, p23, p3t) = (g.p[1] - g.p[0], g.p[2] - g.p[1], g.p_tool - g.p[2]);
+    let d = pose.p - g.p[0];
+    let t1 = sp4(&h2, &d, &(-h1), h2.dot(&(g.p_tool - g.p[0])), free[0]);
+    for q1 in t1.as_slice() {
+        let reach = q1.rot(&h1).transpose() * d - p12;
+        let t3 = sp3(&p3t, &(-p23), &h3, reach.norm(), free[2]);
+        for q3 in t3.as_slice() {
+            let arm = p23 + q3.rot(&h3) * p3t;
+            let (q2, f2) = sp1(&arm, &reach, &h2, free[1]);
+            out.push([q1.theta, q2, q3.theta], t1.fit.and(t3.fit).and(f2));
+        }
+    }
+}
+
+/// **R R P, h1 ∩ h2** (at `c12`; the spherical arm, the Stanford arm's first three joints):
+///
+/// 1. q3 — `‖u + q3 h3‖ = ‖p − c12‖`, `u = pT − c12` (a quadratic: two roots)
+/// 2. (q1, q2) — SP2: `rot(−h1, q1) (p − c12) = rot(h2, q2) (u + q3 h3)`
+///
+/// Up to four solutions (the two of q3 on either side of the shoulder).
+pub fn position_intersecting_prismatic<const K: usize>(
+    g: &Geometry<3>,
+    pose: &Pose,
+    free: &[f64; 3],
+    out: &mut Candidates<3, K>,
+) {
+    let [h1, h2, h3] = g.h;
+    let c12 = meet(g, 0, 1);
+    let u = g.p_tool - c12;
+    let d = pose.p - c12;
+    // q3² + 2 b q3 + c = 0.
+    let b = h3.dot(&u);
+    let c = u.norm_squared() - d.norm_squared();
+    let disc = b * b - c;
+    let merge = ROOT_MERGE * f64::EPSILON * (b * b + u.norm_squared() + d.norm_squared());
+    let (roots, fit): ([f64; 2], Fit) = if disc.abs() <= merge {
+        ([-b, -b], Fit::Double)
+    } else if disc < 0.0 {
+        ([-b, -b], Fit::LeastSquares)
+    } else {
+        let s = crate::math::sqrt(disc);
+        ([-b + s, -b - s], Fit::Exact)
+    };
+    let n3 = if fit == Fit::Exact { 2 } else { 1 };
+    for &q3 in &roots[..n3] {
+        let arm = u + h3 * q3;
+        let (t12, n, f12) = sp2(&d, &arm, &(-h1), &h2, (free[0], free[1]));
+        for (q1, q2) in &t12[..n] {
+            out.push([q1.theta, q2.theta, q3], fit.and(f12));
+        }
+    }
+}
+
+/// **One revolute joint and two prismatic, the revolute joint first (R P P, the
+/// cylindrical arm) or last (P P R)**, the prismatic axes `a`, `b` not parallel, with
+/// `n = a × b / ‖a × b‖`:
+///
+/// - R P P: `rot(−h1, q1) (p − p1) = (pT − p1) + q2 h2 + q3 h3`; q1 — SP4 on the
+///   component along `n`: `nᵀ rot(−h1, q1) (p − p1) = nᵀ (pT − p1)`;
+/// - P P R: `(p − p3) − q1 h1 − q2 h2 = R3 (pT − p3)`; q3 — SP4: `nᵀ R3 (pT − p3) = nᵀ
+///   (p − p3)`;
+///
+/// then the prismatic joints from the 2 × 2 system `q_a a + q_b b = v` (its normal
+/// equations, exact: `v` has no component along `n`). Up to two solutions; the revolute
+/// joint is free when the tool point lies on its axis.
+pub fn position_one_revolute<const K: usize>(
+    g: &Geometry<3>,
+    pose: &Pose,
+    revolute_first: bool,
+    free: &[f64; 3],
+    out: &mut Candidates<3, K>,
+) {
+    let (r, [i, j]) = if revolute_first {
+        (0, [1, 2])
+    } else {
+        (2, [0, 1])
+    };
+    let (a, b, h) = (g.h[i], g.h[j], g.h[r]);
+    let n = a.cross(&b).normalize();
+    let (d, v0) = (pose.p - g.p[r], g.p_tool - g.p[r]);
+    let t = if revolute_first {
+        sp4(&n, &d, &(-h), n.dot(&v0), free[r])
+    } else {
+        sp4(&n, &v0, &h, n.dot(&d), free[r])
+    };
+    for qr in t.as_slice() {
+        let v = if revolute_first {
+            qr.rot(&h).transpose() * d - v0
+        } else {
+            d - qr.rot(&h) * v0
+        };
+        let [qa, qb] = two_slides(&a, &b, &v);
+        let mut q = [0.0; 3];
+        q[r] = qr.theta;
+        q[i] = qa;
+        q[j] = qb;
+        out.push(q, t.fit);
+    }
+}
+
+/// **P P P, the axes independent** (the Cartesian gantry): `p − pT = q1 h1 + q2 h2 + q3
+/// h3`, one solution by Cramer's rule.
+pub fn position_cartesian<const K: usize>(
+    g: &Geometry<3>,
+    pose: &Pose,
+    _free: &[f64; 3],
+    out: &mut Candidates<3, K>,
+) {
+    let [h1, h2, h3] = g.h;
+    let d = pose.p - g.p_tool;
+    let det = h1.dot(&h2.cross(&h3));
+    out.push(
+        [
+            d.dot(&h2.cross(&h3)) / det,
+            d.dot(&h3.cross(&h1)) / det,
+            d.dot(&h1.cross(&h2)) / det,
+        ],
+        Fit::Exact,
+    );
+}
+
+/// `(x, y)` with `x a + y b = v` for unit `a ∦ b` and `v` in their plane (the normal
+/// equations, solved by Cramer's rule).
+fn two_slides(a: &V3, b: &V3, v: &V3) -> [f64; 2] {
+    let ab = a.dot(b);
+    let (va, vb) = (v.dot(a), v.dot(b));
+    let det = 1.0 - ab * ab;
+    [(va - ab * vb) / det, (vb - ab * va) / det]
+}
+
+/// Tests: each case on random arms of its structure, every solution checked by forward
+/// kinematics written out here from the geometry's definition.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::geometry::{rot, M3};
+    use crate::ik::XorShift64;
+
+    fn unit(rng: &mut XorShift64) -> V3 {
+        V3::new(
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+        )
+        .normalize()
+    }
+
+    fn point(rng: &mut XorShift64) -> V3 {
+        V3::new(
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+        ) * 2.0
+    }
+
+    /// The tool point at `q` (the module docs' formula).
+    fn fk(g: &Geometry<3>, q: &[f64; 3]) -> V3 {
+        let mut r = M3::identity();
+        let mut p = g.p[0];
+        let ends = [g.p[1], g.p[2], g.p_tool];
+        for i in 0..3 {
+            if g.prismatic[i] {
+                p += r * g.h[i] * q[i];
+            } else {
+                r *= rot(&g.h[i], q[i]);
+            }
+            p += r * (ends[i] - g.p[i]);
+        }
+        p
+    }
+
+    fn geometry(h: [V3; 3], p: [V3; 3], prismatic: [bool; 3], tool: V3) -> Geometry<3> {
+        Geometry {
+            h,
+            p,
+            prismatic,
+            r_tool: M3::identity(),
+            p_tool: tool,
+        }
+    }
+
+    /// `solve` on 200 random arms made by `arm` and a random `q` each: every solution not
+    /// flagged least squares reaches the point (1e-10 of the arm's size), the generating
+    /// `q` among them.
+    fn check(
+        arm: impl Fn(&mut XorShift64) -> Geometry<3>,
+        solve: impl Fn(&Geometry<3>, &Pose, &mut Candidates<3, 4>),
+    ) {
+        let mut rng = XorShift64::new(27);
+        for _ in 0..200 {
+            let g = arm(&mut rng);
+            let q: [f64; 3] = core::array::from_fn(|i| {
+                if g.prismatic[i] {
+                    2.0 * rng.next_f64() - 1.0
+                } else {
+                    (2.0 * rng.next_f64() - 1.0) * core::f64::consts::PI
+                }
+            });
+            let pose = Pose {
+                r: M3::identity(),
+                p: fk(&g, &q),
+            };
+            let mut out = Candidates::default();
+            solve(&g, &pose, &mut out);
+            let size = 1.0 + pose.p.norm() + g.p_tool.norm();
+            // A branch whose subproblem has no exact root is flagged least squares (the
+            // generated code's `finish` then measures it); every other must reach the point.
+            for c in out.as_slice().iter().filter(|c| c.fit != Fit::LeastSquares) {
+                let e = (fk(&g, &c.q) - pose.p).norm();
+                assert!(e <= 1e-10 * size, "{e:e} off: {g:?} {q:?} {:?}", c.q);
+            }
+            let same = out.as_slice().iter().any(|c| {
+                c.fit != Fit::LeastSquares
+                    && (0..3).all(|i| {
+                        let d = c.q[i] - q[i];
+                        let d = if g.prismatic[i] {
+                            d
+                        } else {
+                            crate::ik::subproblems::wrap(d)
+                        };
+                        d.abs() < 1e-7
+                    })
+            });
+            assert!(same, "generating q not found: {g:?} {q:?}");
+        }
+    }
+
+    #[test]
+    fn intersecting_shoulder() {
+        check(
+            |rng| {
+                let c = point(rng);
+                let h1 = unit(rng);
+                geometry(
+                    [h1, unit(rng), unit(rng)],
+                    [c, c, point(rng)],
+                    [false; 3],
+                    point(rng),
+                )
+            },
+            |g, p, o| position_intersecting(g, p, &[0.0; 3], o),
+        );
+    }
+
+    #[test]
+    fn parallel_elbow() {
+        check(
+            |rng| {
+                let h2 = unit(rng);
+                geometry(
+                    [unit(rng), h2, -h2],
+                    [point(rng), point(rng), point(rng)],
+                    [false; 3],
+                    point(rng),
+                )
+            },
+            |g, p, o| position_parallel(g, p, &[0.0; 3], o),
+        );
+    }
+
+    #[test]
+    fn spherical_arm() {
+        check(
+            |rng| {
+                let c = point(rng);
+                geometry(
+                    [unit(rng), unit(rng), unit(rng)],
+                    [c, c, point(rng)],
+                    [false, false, true],
+                    point(rng),
+                )
+            },
+            |g, p, o| position_intersecting_prismatic(g, p, &[0.0; 3], o),
+        );
+    }
+
+    #[test]
+    fn cylindrical_and_its_reverse() {
+        for first in [true, false] {
+            let prismatic = if first {
+                [false, true, true]
+            } else {
+                [true, true, false]
+            };
+            check(
+                |rng| {
+                    geometry(
+                        [unit(rng), unit(rng), unit(rng)],
+                        [point(rng), point(rng), point(rng)],
+                        prismatic,
+                        point(rng),
+                    )
+                },
+                |g, p, o| position_one_revolute(g, p, first, &[0.0; 3], o),
+            );
+        }
+    }
+
+    #[test]
+    fn cartesian() {
+        check(
+            |rng| {
+                geometry(
+                    [unit(rng), unit(rng), unit(rng)],
+                    [point(rng), point(rng), point(rng)],
+                    [true; 3],
+                    point(rng),
+                )
+            },
+            |g, p, o| position_cartesian(g, p, &[0.0; 3], o),
+        );
+    }
+}
