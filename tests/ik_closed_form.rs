@@ -435,6 +435,111 @@ locked_self_test!(
     ignore =
         "known gap: URDF iiwa, joint 2 free, near-straight elbow, a branch 4.9e-10 off (issue 27)"
 );
+/// The Panda's self-test with q2 drawn by `q2(i, u)` (`u` uniform in [−1, 1]) over
+/// `cases` configurations: no wrong solution, the generating configuration found, or at a
+/// singular one (its locked 6×6 Jacobian) returned by `ik_near`.
+fn panda_q2_band(seed: u64, cases: usize, q2: impl Fn(usize, f64) -> f64) {
+    let robot = Panda::default();
+    let revolute = &Panda::REVOLUTE;
+    let mut rng = XorShift64::new(seed);
+    let mut tally = Tally::default();
+    for i in 0..cases {
+        let mut q = configuration(&mut rng, &Panda::LIMITS, revolute);
+        q[1] = q2(i, 2.0 * rng.next_f64() - 1.0);
+        let pose = robot.fk(&q);
+        let j = robot.jacobian(&q);
+        let m: [[f64; 6]; 6] = core::array::from_fn(|r| core::array::from_fn(|c| j[r][c]));
+        let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+        let sols = robot.ik_with(&pose, q[6]);
+        let near = robot.ik_near(&pose, &q);
+        check(
+            "Panda",
+            &q,
+            &pose,
+            &sols,
+            near,
+            singular,
+            false,
+            revolute,
+            |x| robot.fk(x),
+            pose_error,
+        );
+        tally.add(singular, &sols);
+    }
+    eprintln!("Panda, q2 band: {tally:?}");
+}
+
+/// The Panda's `q2 = 0` band, where axes 1 and 3 line up (He & Liu's solver returns a
+/// configuration off the pose in 2.4 % of uniform poses, nearly all with |q2| < 0.05):
+/// 4 000 configurations, half with q2 = 0 exactly, half with |q2| ≤ 0.05.
+#[test]
+fn panda_q2_zero_band() {
+    panda_q2_band(2, 4_000, |i, u| if i % 2 == 0 { 0.0 } else { 0.05 * u });
+}
+
+/// Known gap: with 0 < |q2| ≲ 3e-6 the two roots ±q2 of the middle joint of the
+/// reversed chain's wrist are closer than SP4's merge distance (2√1e-11 ≈ 6e-6 rad) and
+/// are taken as one double root at 0; that branch misses the pose by up to ~1e-6 m and is
+/// flagged inexact, so the generating configuration is missing (seed 2: q2 = −6.1e-7,
+/// residual 4.4e-7). Not wrong — the branch is flagged — but a dropped solution.
+#[test]
+#[ignore = "known gap: |q2| below SP4's merge distance loses the generating configuration"]
+fn panda_q2_within_a_micro_radian() {
+    panda_q2_band(2, 1_000, |_, u| 1e-6 * u);
+}
+
+/// `ik_near` along 40 paths across `q2 = 0` (q7 fixed; 400 steps from q2 = −0.02 to
+/// 0.02, the other joints, drawn in the limits, moving up to 0.02 rad), each followed
+/// from the last answer:
+/// every answer reaches its pose, moves by at most twice the path's step and stays within
+/// that of the path (at q2 = 0 only q1 + q3 is fixed: q1 keeps its last value).
+#[test]
+fn panda_ik_near_across_q2_zero() {
+    let robot = Panda::default();
+    let revolute = &Panda::REVOLUTE;
+    let mut rng = XorShift64::new(3);
+    let steps = 400;
+    for _ in 0..40 {
+        // Drawn without snapping: the path is about q2 = 0, not compound singularities.
+        let a: [f64; 7] = core::array::from_fn(|i| {
+            let [lo, hi] = Panda::LIMITS[i];
+            lo + (hi - lo) * rng.next_f64()
+        });
+        let mut b = a;
+        for i in 0..6 {
+            let [lo, hi] = Panda::LIMITS[i];
+            b[i] = (a[i] + 0.02 * (2.0 * rng.next_f64() - 1.0)).clamp(lo, hi);
+        }
+        let path = |t: f64| -> [f64; 7] {
+            let mut q: [f64; 7] = core::array::from_fn(|i| a[i] + t * (b[i] - a[i]));
+            q[1] = -0.02 + t * 0.04;
+            q
+        };
+        let step = (0..7)
+            .map(|i| (path(1.0)[i] - path(0.0)[i]).abs() / steps as f64)
+            .fold(0.0, f64::max);
+        let mut current = path(0.0);
+        for k in 1..=steps {
+            let q = path(k as f64 / steps as f64);
+            let pose = robot.fk(&q);
+            let near = robot
+                .ik_near(&pose, &current)
+                .unwrap_or_else(|| panic!("ik_near found nothing at {q:?}"));
+            let e = pose_error(&robot.fk(&near), &pose);
+            assert!(e <= 1e-10, "ik_near({q:?}) is {e:e} off");
+            let (moved, off) = (
+                joint_gap(&near, &current, revolute),
+                joint_gap(&near, &q, revolute),
+            );
+            assert!(
+                moved <= 2.0 * step && off <= 2.0 * step,
+                "ik_near jumped by {moved:e} (path step {step:e}) at {q:?}: {near:?} from {current:?}"
+            );
+            current = near;
+        }
+    }
+}
+
 locked_self_test!(panda_joint_7_free, Panda, 7);
 locked_self_test!(panda_from_urdf_joint_7_free, PandaUrdf, 77);
 
