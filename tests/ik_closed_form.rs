@@ -477,15 +477,48 @@ fn panda_q2_zero_band() {
     panda_q2_band(2, 4_000, |i, u| if i % 2 == 0 { 0.0 } else { 0.05 * u });
 }
 
-/// Known gap: with 0 < |q2| ≲ 3e-6 the two roots ±q2 of the middle joint of the
-/// reversed chain's wrist are closer than SP4's merge distance (2√1e-11 ≈ 6e-6 rad) and
-/// are taken as one double root at 0; that branch misses the pose by up to ~1e-6 m and is
-/// flagged inexact, so the generating configuration is missing (seed 2: q2 = −6.1e-7,
-/// residual 4.4e-7). Not wrong — the branch is flagged — but a dropped solution.
+/// The Panda within a micro-radian of `q2 = 0` (2 000 configurations drawn in the limits
+/// without snapping, |q2| ≤ 1e-6): the reversed chain's wrist has two roots ±q2 closer
+/// than SP4's merge distance (or nearly so), which the wrist splits and polishes on the
+/// whole rotation. Every pose gets an exact solution, none wrong, and one within `1e-7 +
+/// 1e-11 / |q2|` of the generating configuration: there the pose fixes q1 − q3 only to
+/// the error of the joints solved before (1e-13, up to 1e-12 where those are near a
+/// double root themselves) over |q2|; within 1e-10 of it, `ik_near` returns it.
 #[test]
-#[ignore = "known gap: |q2| below SP4's merge distance loses the generating configuration"]
-fn panda_q2_within_a_micro_radian() {
-    panda_q2_band(2, 1_000, |_, u| 1e-6 * u);
+fn panda_within_a_micro_radian_of_q2_zero() {
+    let robot = Panda::default();
+    let revolute = &Panda::REVOLUTE;
+    let mut rng = XorShift64::new(6);
+    for _ in 0..2_000 {
+        let mut q: [f64; 7] = core::array::from_fn(|i| {
+            let [lo, hi] = Panda::LIMITS[i];
+            lo + (hi - lo) * rng.next_f64()
+        });
+        q[1] = 1e-6 * (2.0 * rng.next_f64() - 1.0);
+        let pose = robot.fk(&q);
+        let sols = robot.ik_with(&pose, q[6]);
+        assert!(sols.exact().next().is_some(), "no exact solution for {q:?}");
+        for b in sols.exact() {
+            let e = pose_error(&robot.fk(&b.q), &pose);
+            assert!(e <= 1e-10, "exact {:?} of {q:?} is {e:e} off", b.q);
+        }
+        if q[1].abs() <= 1e-10 {
+            // Within the exactness tolerance of q2 = 0: singular for the pose, where only
+            // q1 + q3 is fixed and `ik_near` keeps the current q1.
+            let near = robot.ik_near(&pose, &q).expect("ik_near");
+            assert!(
+                joint_gap(&near, &q, revolute) <= 1e-7,
+                "ik_near({q:?}) = {near:?}"
+            );
+            continue;
+        }
+        let tol = 1e-7 + 1e-11 / q[1].abs();
+        assert!(
+            sols.exact().any(|b| joint_gap(&b.q, &q, revolute) <= tol),
+            "{q:?} not among {:?}",
+            sols.as_slice()
+        );
+    }
 }
 
 /// `ik_near` along 40 paths across `q2 = 0` (q7 fixed; 400 steps from q2 = −0.02 to

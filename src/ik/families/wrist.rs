@@ -48,13 +48,35 @@ impl Wrist {
     #[inline]
     pub(super) fn solve(
         &self,
-        (r36_h6, r36t_h4): (V3, V3),
+        target: (V3, V3),
         r36: impl Fn() -> M3,
         free: [f64; 2],
         out: &mut [([f64; 3], Fit); 2],
     ) -> usize {
+        let t5 = self.q5.solve(self.h[0].dot(&target.0), 0.0);
+        let n = self.solve_roots(t5, target, &r36, free, out);
+        // Two roots of q5 within NEAR_DOUBLE of each other: each carries SP4's rounding
+        // amplified by 1/|q5 − q5*|, and q4, q6 after it; polished on the whole rotation
+        // (their fit stays: the polish only takes rounding out).
+        if t5.n == 2 && wrap(t5.angles[0].theta - t5.angles[1].theta).abs() < NEAR_DOUBLE {
+            let m = r36();
+            for (q, _) in &mut out[..n] {
+                *q = self.polish(*q, &m);
+            }
+        }
+        n
+    }
+
+    #[inline(always)]
+    fn solve_roots(
+        &self,
+        t5: crate::ik::subproblems::Roots,
+        (r36_h6, r36t_h4): (V3, V3),
+        r36: &impl Fn() -> M3,
+        free: [f64; 2],
+        out: &mut [([f64; 3], Fit); 2],
+    ) -> usize {
         let [h4, h5, h6] = &self.h;
-        let t5 = self.q5.solve(h4.dot(&r36_h6), 0.0);
         if self.pair == WristPair::HalfTurn && t5.n == 2 {
             let q5 = t5.angles[0];
             let sides4 = sp1_sides(&self.h6_about_h5.at(&q5), &r36_h6, h4);
@@ -67,6 +89,11 @@ impl Wrist {
                 out[0] = ([q4, q5.theta, q6], fit);
                 out[1] = ([wrap(q4 + PI), t5.angles[1].theta, wrap(q6 + PI)], fit);
                 return 2;
+            }
+        }
+        if t5.fit == Fit::Double {
+            if let Some(n) = self.split(t5.angles[0], (r36_h6, r36t_h4), r36, free, out) {
+                return n;
             }
         }
         for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
@@ -85,12 +112,106 @@ impl Wrist {
         t5.n
     }
 
+    /// A q5 merged into a double root (two roots closer than SP4's merge distance,
+    /// `2√1e-11 ≈ 6e-6` rad) whose wrist misses `R36` by more than rounding: the two roots
+    /// were both real — the wrist a few µrad from its singularity, not at it — so both are
+    /// solved (q4, q6 by SP1, then [`Wrist::polish`]) and flagged `Double`, for `finish` to
+    /// check against `fk`. `None` — the merged branch stays — where it makes `R36` to
+    /// rounding (the wrist is at its singularity, where the merged branch, with q4 free,
+    /// is the answer) or either split branch misses `R36` by as much.
+    #[cold]
+    fn split(
+        &self,
+        merged: crate::ik::geometry::Angle,
+        (r36_h6, r36t_h4): (V3, V3),
+        r36: &impl Fn() -> M3,
+        free: [f64; 2],
+        out: &mut [([f64; 3], Fit); 2],
+    ) -> Option<usize> {
+        let [h4, h5, h6] = &self.h;
+        let m = r36();
+        // The merged branch's q4 and q6 as the loop below finds them (q4 free only at
+        // `h4 ∥ R5 h6`).
+        let (q4, f4) = sp1(&self.h6_about_h5.at(&merged), &r36_h6, h4, free[0]);
+        let q6 = if f4 == Fit::Free {
+            let rest = (rot(h4, q4) * merged.rot(h5)).transpose() * m;
+            let x = orthogonal(h6);
+            sp1(&x, &(rest * x), h6, free[1]).0
+        } else {
+            sp1(&r36t_h4, &self.h4_about_h5.back(&merged), h6, free[1]).0
+        };
+        let miss = |[q4, q5, q6]: [f64; 3]| (rot(h4, q4) * rot(h5, q5) * rot(h6, q6) - m).amax();
+        let merged_miss = miss([q4, merged.theta, q6]);
+        if merged_miss <= MERGED_WRIST {
+            return None;
+        }
+        // The two roots; where rounding hid them (|q5 − q5*| below ~1e-8: the
+        // discriminant is lost), q5 moved from the merged root either way by its miss.
+        let roots = self.q5.split(h4.dot(&r36_h6)).unwrap_or_else(|| {
+            [merged_miss, -merged_miss].map(|d| crate::ik::geometry::Angle::new(merged.theta + d))
+        });
+        let mut split = [([0.0; 3], Fit::Double); 2];
+        for (o, q5) in split.iter_mut().zip(&roots) {
+            let (q4, f4) = sp1(&self.h6_about_h5.at(q5), &r36_h6, h4, free[0]);
+            let (q6, f6) = sp1(&r36t_h4, &self.h4_about_h5.back(q5), h6, free[1]);
+            let q = self.polish([q4, q5.theta, q6], &m);
+            *o = (q, Fit::Double.and(f4).and(f6));
+        }
+        // The split pair only where both its branches make R36 better than the merged one.
+        if split.iter().any(|(q, _)| miss(*q) >= merged_miss) {
+            return None;
+        }
+        *out = split;
+        Some(2)
+    }
+
+    /// `(q4, q5, q6)` moved by Gauss–Newton on `R4 R5 R6 = R36` (`m`): near the wrist's
+    /// singularity the subproblems' angles carry rounding amplified by the inverse of the
+    /// distance to it; the Jacobian's weak direction (q4 against q6) barely moves the
+    /// rotation, so what rounding leaves there costs nothing.
+    #[cold]
+    fn polish(&self, [mut q4, mut q5, mut q6]: [f64; 3], m: &M3) -> [f64; 3] {
+        let [h4, h5, h6] = &self.h;
+        for _ in 0..ROUNDS {
+            let r4 = rot(h4, q4);
+            let r45 = r4 * rot(h5, q5);
+            // R36 = D R4 R5 R6 with D ≈ I + [e]×: e in the wrist's base frame, where the
+            // joint rates turn it by h4 q̇4 + R4 h5 q̇5 + R4 R5 h6 q̇6.
+            let d = m * (r45 * rot(h6, q6)).transpose();
+            let e = 0.5 * V3::new(d.m32 - d.m23, d.m13 - d.m31, d.m21 - d.m12);
+            let j = M3::from_columns(&[*h4, r4 * h5, r45 * h6]);
+            // J itself, not JᵀJ: a micro-radian from the singularity JᵀJ's condition
+            // (the square of J's) is past what f64 resolves.
+            let Some(step) = j.lu().solve(&e) else {
+                break;
+            };
+            (q4, q5, q6) = (q4 + step.x, q5 + step.y, q6 + step.z);
+        }
+        [wrap(q4), wrap(q5), wrap(q6)]
+    }
+
     /// What [`Wrist::solve`] needs of the rotation `r36`.
     #[inline]
     pub(super) fn target(&self, r36: &M3) -> (V3, V3) {
         (r36 * self.h[2], r36.transpose() * self.h[0])
     }
 }
+
+/// Largest entry of `R4 R5 R6 − R36` a merged double root of q5 may leave before its two
+/// roots are split (`EXACT_TOLERANCE`). A wrist at its singularity, computed in floating
+/// point, misses by the rounding upstream (1e-12 on the Panda, 5e-11 where its q5 is 0 as
+/// well): the merged branch, with q4 left free, is then the answer. One a micro-radian
+/// from it misses by about that.
+const MERGED_WRIST: f64 = 1e-10;
+
+/// Gauss–Newton rounds of [`Wrist::polish`]. Each squares the error; a start within
+/// rounding of the answer needs two, but a nanoradian from the singularity SP1 gives q4
+/// only to about 0.1 rad (the wrist's weak direction), and eight rounds bring that in.
+const ROUNDS: usize = 8;
+
+/// Two roots of q5 closer than this (rad) are polished ([`Wrist::polish`]): their
+/// rounding, amplified by the inverse of the gap, can reach 1e-10 within about 1e-4.
+const NEAR_DOUBLE: f64 = 1e-3;
 
 /// Adds the wrist solutions for the arm joints `q123` to `out`; `R36 = (R1 R2 R3)ᵀ R06` is
 /// the rotation the wrist must make (a prismatic joint turns nothing), given as

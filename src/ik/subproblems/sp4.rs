@@ -7,12 +7,12 @@
 //! level side by side ([`Sp4Lanes`]).
 
 use super::{
-    cos_case, cos_equation, CosCase, Fit, RootLanes, Roots, EPS, MERGE_RELATIVE, ON_AXIS,
+    cos_case, cos_equation, roots_of, CosCase, Fit, RootLanes, Roots, EPS, MERGE_RELATIVE, ON_AXIS,
     ROOT_MERGE,
 };
-use crate::ik::geometry::{flat, scale, Angle, V3};
+use crate::ik::geometry::{flat, scale, sqrt0, Angle, V3};
 use crate::ik::lanes::Lanes;
-use crate::math::sqrt;
+use crate::math::{fast_atan2 as atan2, sqrt};
 
 /// **SP4** — `θ` with `hᵀ rot(k, θ) p = d`: where the circle of `p` about `k` crosses the
 /// plane `hᵀ x = d`. Two roots, a double root (the circle touches the plane), least
@@ -72,6 +72,22 @@ impl Sp4 {
     #[inline]
     pub fn solve(&self, d: f64, free: f64) -> Roots {
         self.solve_terms(d, d.abs(), free)
+    }
+
+    /// The two roots `φ ± d` for `d` when the circle crosses the plane at all (`r² > b²`),
+    /// without the merge of near-double roots that [`Sp4::solve`] applies: for a caller
+    /// whose merged root turned out too far from its target (two roots a few µrad apart
+    /// are then both real solutions, not one blurred by rounding).
+    #[inline]
+    pub fn split(&self, d: f64) -> Option<[Angle; 2]> {
+        let c = &self.circle;
+        let b = d - c.axial;
+        let disc = c.ca * c.ca + c.sa * c.sa - b * b;
+        let phi = self.phi?;
+        (disc > 0.0).then(|| {
+            let half = atan2(sqrt0(disc), b);
+            roots_of(phi.theta, half).map(Angle::new)
+        })
     }
 
     #[inline]
