@@ -1,7 +1,10 @@
 //! Closed-form IK, all solutions per call, on the same 1 000 poses for every contender
 //! (fk of configurations drawn within the limits, fixed seed):
 //!
-//! - kinegen's generated `ik` (UR5, PUMA 560);
+//! - kinegen's generated `ik` (UR5, PUMA 560), and the Franka Panda's `ik_with(pose, q7)`
+//!   (joint 7 locked at the generating configuration's value, all solutions of the other
+//!   six; issue 27 — He & Liu's analytic Panda IK is compared outside CI by
+//!   `benches/panda_ik/panda_ik_bench.py`);
 //! - `rs-opw-kinematics` (PUMA 560 only: OPW covers spherical-wrist arms, not the UR),
 //!   with parameters fitted to the same DH table and checked by forward kinematics;
 //! - kinegen's numerical IK to one solution: Newton from a random start (single start)
@@ -27,7 +30,7 @@ use ik_common::{miss, poses, same};
 use criterion::{criterion_group, criterion_main, Criterion};
 use kinegen::ik::{solve, solve_nearest, IkOptions, IkTarget, MultiStart, XorShift64};
 use kinegen::Kinematics;
-use kinegen_robots::{Puma560, Ur5};
+use kinegen_robots::{Panda, Puma560, Ur5};
 use nalgebra::Matrix4;
 use rs_opw_kinematics::glam::{DMat3, DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Kinematics as _, Pose as OpwPose};
@@ -110,12 +113,12 @@ struct Tally {
 }
 
 impl Tally {
-    fn add<R: Kinematics<6>>(
+    fn add<const N: usize, R: Kinematics<N>>(
         &mut self,
         robot: &R,
         pose: &[[f64; 4]; 4],
-        q0: &[f64; 6],
-        sols: &[[f64; 6]],
+        q0: &[f64; N],
+        sols: &[[f64; N]],
     ) {
         self.solutions += sols.len();
         self.exact += sols.iter().filter(|q| miss(robot, q, pose) < 1e-9).count();
@@ -164,6 +167,18 @@ fn report() {
     t[0].print("UR5 kinegen ik (exact branches)");
     t[1].print("PUMA 560 kinegen ik (exact)");
     t[2].print("PUMA 560 rs-opw-kinematics");
+    // The Panda: every branch `ik_with` returns, judged by fk (not by its own flag).
+    let panda = Panda::default();
+    let mut tp = Tally::default();
+    let mut flagged = 0;
+    for (pose, q0) in &poses(&panda, 2026, poses_count()) {
+        let sols = panda.ik_with(pose, q0[6]);
+        flagged += sols.exact().count();
+        let s: Vec<[f64; 7]> = sols.iter().map(|b| b.q).collect();
+        tp.add(&panda, pose, q0, &s);
+    }
+    tp.print("Panda kinegen ik_with(pose, q7)");
+    println!("{:<34} {flagged:>6} flagged exact by ik_with", "");
     let opts = IkOptions::default();
     let mut rng = XorShift64::new(7);
     let mut single = 0;
@@ -212,6 +227,20 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             for pose in &opw_poses {
                 black_box(opw.inverse(black_box(pose)));
+            }
+        })
+    });
+    // Joint 7 locked at the generating configuration's value, as He & Liu's solver is
+    // given it.
+    let panda = Panda::default();
+    let panda_set: Vec<([[f64; 4]; 4], f64)> = poses(&panda, 2026, poses_count())
+        .into_iter()
+        .map(|(pose, q)| (pose, q[6]))
+        .collect();
+    g.bench_function("panda_kinegen_ik_with_q7", |b| {
+        b.iter(|| {
+            for (pose, q7) in &panda_set {
+                black_box(panda.ik_with(black_box(pose), black_box(*q7)));
             }
         })
     });

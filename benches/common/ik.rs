@@ -1,6 +1,6 @@
 //! What the closed-form IK benches share (`#[path]`-included by `benches/ik_closed_form.rs`
 //! and `benches/ik-geo/benches/ik_geo.rs`): the poses every contender solves, and how a
-//! solution is judged.
+//! solution is judged, for any joint count (six-joint arms, the seven-joint Panda).
 
 use std::f64::consts::PI;
 
@@ -9,11 +9,11 @@ use kinegen::Kinematics;
 
 /// `count` poses of configurations drawn within the limits (seeded), with the
 /// configurations.
-pub fn poses<R: Kinematics<6>>(
+pub fn poses<const N: usize, R: Kinematics<N>>(
     robot: &R,
     seed: u64,
     count: usize,
-) -> Vec<([[f64; 4]; 4], [f64; 6])> {
+) -> Vec<([[f64; 4]; 4], [f64; N])> {
     let limits = robot.limits();
     let mut rng = XorShift64::new(seed);
     (0..count)
@@ -25,7 +25,11 @@ pub fn poses<R: Kinematics<6>>(
 }
 
 /// `max |fk(q) − pose|` over the top three rows.
-pub fn miss<R: Kinematics<6>>(robot: &R, q: &[f64; 6], pose: &[[f64; 4]; 4]) -> f64 {
+pub fn miss<const N: usize, R: Kinematics<N>>(
+    robot: &R,
+    q: &[f64; N],
+    pose: &[[f64; 4]; 4],
+) -> f64 {
     let t = robot.fk(q);
     (0..3)
         .flat_map(|r| (0..4).map(move |c| (r, c)))
@@ -34,7 +38,7 @@ pub fn miss<R: Kinematics<6>>(robot: &R, q: &[f64; 6], pose: &[[f64; 4]; 4]) -> 
 }
 
 /// The same configuration, modulo whole turns (1e-6 rad).
-pub fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
+pub fn same<const N: usize>(a: &[f64; N], b: &[f64; N]) -> bool {
     a.iter().zip(b).all(|(x, y)| {
         let d = x - y;
         (d - 2.0 * PI * (d / (2.0 * PI)).round()).abs() < 1e-6
