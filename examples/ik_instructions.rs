@@ -1,10 +1,12 @@
 //! A fixed workload of closed-form IK for instruction counts, which unlike timings on a
 //! shared machine do not move between runs: the generated `ik` of the UR5 or the PUMA 560
-//! (`kinegen-robots`) on the 1 000 poses of `benches/ik_closed_form.rs` (fk of
-//! configurations drawn within the limits, seed 2026), 20 times over.
+//! (`kinegen-robots`), or the Panda's `ik_with(pose, q7)` with q7 of the generating
+//! configuration, on the 1 000 poses of `benches/ik_closed_form.rs` (fk of configurations
+//! drawn within the limits, seed 2026), 20 times over.
 //!
 //! Run: `cargo build --release --example ik_instructions`, then
-//! `valgrind --tool=callgrind target/release/examples/ik_instructions ur5` (or `puma560`):
+//! `valgrind --tool=callgrind target/release/examples/ik_instructions ur5` (or `puma560`,
+//! `panda`):
 //! instructions per `ik` = the total / 20 000 (the set-up adds under 1 %). Without
 //! valgrind it prints the time per `ik` too (a rough figure: criterion's is the one
 //! `BENCHMARKS.md` reports).
@@ -14,24 +16,35 @@ use std::time::Instant;
 
 use kinegen::ik::XorShift64;
 use kinegen::Kinematics;
-use kinegen_robots::{Puma560, Ur5};
+use kinegen_robots::{Panda, Puma560, Ur5};
 
-/// The poses of `benches/common/ik.rs::poses` for `seed`.
-fn poses<R: Kinematics<6>>(robot: &R, seed: u64, count: usize) -> Vec<[[f64; 4]; 4]> {
+/// The poses of `benches/common/ik.rs::poses` for `seed`, with their configurations.
+fn poses<const N: usize, R: Kinematics<N>>(
+    robot: &R,
+    seed: u64,
+    count: usize,
+) -> Vec<([[f64; 4]; 4], [f64; N])> {
     let limits = robot.limits();
     let mut rng = XorShift64::new(seed);
     (0..count)
-        .map(|_| robot.fk(&rng.configuration(&limits)))
+        .map(|_| {
+            let q = rng.configuration(&limits);
+            (robot.fk(&q), q)
+        })
         .collect()
 }
 
-fn run<R: Kinematics<6>>(robot: &R, ik: impl Fn(&R, &[[f64; 4]; 4]) -> usize) {
+/// `ik(robot, pose, q)`: the number of solutions for `pose`, made by configuration `q`.
+fn run<const N: usize, R: Kinematics<N>>(
+    robot: &R,
+    ik: impl Fn(&R, &[[f64; 4]; 4], &[f64; N]) -> usize,
+) {
     let poses = poses(robot, 2026, 1000);
     let start = Instant::now();
     let mut solutions = 0;
     for _ in 0..20 {
-        for pose in &poses {
-            solutions += ik(robot, black_box(pose));
+        for (pose, q) in &poses {
+            solutions += ik(robot, black_box(pose), q);
         }
     }
     let ns = start.elapsed().as_nanos() as f64 / 20_000.0;
@@ -40,10 +53,13 @@ fn run<R: Kinematics<6>>(robot: &R, ik: impl Fn(&R, &[[f64; 4]; 4]) -> usize) {
 
 fn main() {
     match std::env::args().nth(1).as_deref() {
-        Some("ur5") | None => run(&Ur5::default(), |r, p| black_box(r.ik(p)).len()),
-        Some("puma560") => run(&Puma560::default(), |r, p| black_box(r.ik(p)).len()),
+        Some("ur5") | None => run(&Ur5::default(), |r, p, _| black_box(r.ik(p)).len()),
+        Some("puma560") => run(&Puma560::default(), |r, p, _| black_box(r.ik(p)).len()),
+        Some("panda") => run(&Panda::default(), |r, p, q| {
+            black_box(r.ik_with(p, black_box(q[6]))).len()
+        }),
         Some(other) => {
-            eprintln!("unknown robot {other:?}: ur5 or puma560");
+            eprintln!("unknown robot {other:?}: ur5, puma560 or panda");
             std::process::exit(2);
         }
     }
