@@ -36,6 +36,10 @@ kinegen's geometry at q = 0 and its flange and tool poses at q = 0. The script
    the loop; `--repeats` rounds, libraries interleaved; median per call), and the same
    call with q7 outside joint 7's limits, which He & Liu's code answers with NaN before
    any solving: the binding's and the loop's own cost per call.
+
+`--export-cpp FILE` writes the poses for `he_liu_bench.cpp` (He & Liu's C++ timed without
+bindings; how to build it is at its top) and stops; `--cpp-solutions FILE` adds the
+counts of the answers that program wrote to the report.
 """
 import argparse
 import importlib.metadata as metadata
@@ -150,14 +154,21 @@ def reconcile(lib, fk, cases, poses, tool):
     return x
 
 
-def tally(lib, fk, cases, poses, inputs, q_actual):
+def tally(lib, cases, inputs, q_actual):
+    """Each pose's `ik_full` rows (4 × 7, NaN rows for none)."""
+    out = []
+    for c, pin in zip(cases, inputs):
+        qa = HOME if q_actual is None else np.array(c["q"])
+        out.append(np.asarray(lib.ik_full(*lib.args(pin, qa, c["q"][6]))))
+    return out
+
+
+def counts(fk, cases, poses, answers):
     """Counts over all poses. A row with a NaN is no solution (the libraries' "NaN if no
     solution"); rows partly NaN are counted apart."""
     found_any = solutions = found = wrong = wrong_poses = other_q4 = partial = 0
     worst_wrong = 0.0
-    for c, p, pin in zip(cases, poses, inputs):
-        qa = HOME if q_actual is None else np.array(c["q"])
-        rows = np.asarray(lib.ik_full(*lib.args(pin, qa, c["q"][6])))
+    for c, p, rows in zip(cases, poses, answers):
         nan = np.isnan(rows)
         partial += int(np.sum(nan.any(axis=1) & ~nan.all(axis=1)))
         rows = [q for q, m in zip(rows, nan) if not m.any()]
@@ -178,6 +189,13 @@ def tally(lib, fk, cases, poses, inputs, q_actual):
                 partial=partial)
 
 
+def summary(t, n):
+    return (f"≥ 1 solution for {t['found_any']}/{n} poses, {t['solutions']} solutions, "
+            f"generating q recovered {t['found']}/{n} ({t['other_q4']} of the misses: no answer "
+            f"with the generating q4), wrong {t['wrong']} on {t['wrong_poses']} poses (up to "
+            f"{t['worst_wrong']:.1e} off); {t['partial']} rows partly NaN (not counted as solutions)")
+
+
 def timed(f, args):
     t = time.perf_counter_ns()
     for a in args:
@@ -189,12 +207,24 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("cases", help="output of `cargo run --release --example panda_ik_json`")
     ap.add_argument("--repeats", type=int, default=30)
+    ap.add_argument("--export-cpp", metavar="FILE",
+                    help="write the poses for he_liu_bench.cpp (q7, then the pose column-major, "
+                         "one line per pose) and stop")
+    ap.add_argument("--cpp-solutions", metavar="FILE",
+                    help="also count the answers he_liu_bench.cpp wrote (4 rows of 7 per pose)")
     args = ap.parse_args()
     with open(args.cases) as f:
         data = json.load(f)
     cases = data["cases"]
     n = len(cases)
     poses = [np.array(c["pose"]) for c in cases]
+    if args.export_cpp:
+        # He & Liu's C++ reads the hand TCP's pose (d7e = 0.2104 m = flange 0.107 + hand
+        # 0.1034, and the hand's −π/4), kinegen's tool frame: checked by the answers' fk.
+        with open(args.export_cpp, "w") as f:
+            for c, p in zip(cases, poses):
+                f.write(" ".join(repr(float(x)) for x in [c["q"][6], *p.T.flatten()]) + "\n")
+        return
     fk = KinegenFk(data)
     worst = max(off(fk(c["q"]), p) for c, p in zip(cases, poses))
     if worst > 1e-12:
@@ -212,12 +242,13 @@ def main():
 
     for lib in libs:
         for label, qa in (("q_actual = home", None), ("q_actual = generating q", "generating")):
-            t = tally(lib, fk, cases, poses, inputs[lib.name], qa)
-            print(f"{lib.name} ik_full, {label}: ≥ 1 solution for {t['found_any']}/{n} poses, "
-                  f"{t['solutions']} solutions, generating q recovered {t['found']}/{n} "
-                  f"({t['other_q4']} of the misses: no answer with the generating q4), "
-                  f"wrong {t['wrong']} on {t['wrong_poses']} poses (up to {t['worst_wrong']:.1e} off); "
-                  f"{t['partial']} rows partly NaN (not counted as solutions)")
+            t = counts(fk, cases, poses, tally(lib, cases, inputs[lib.name], qa))
+            print(f"{lib.name} ik_full, {label}: " + summary(t, n))
+
+    if args.cpp_solutions:
+        rows = np.loadtxt(args.cpp_solutions).reshape(n, 4, 7)
+        t = counts(fk, cases, poses, rows)
+        print("He & Liu C++ (he_liu_bench.cpp, q_actual = home): " + summary(t, n))
 
     # An out-of-limits q7 (He & Liu return NaN before solving): the call's own cost.
     q7_out = 10.0
