@@ -209,11 +209,42 @@ fn planar_arm_solves_its_task_rows() {
     }
 }
 
+/// The cylindrical arm's position IK from the CLI: both solutions (the reach on either
+/// side of axis 1) reach the point, checked by the engine's numeric reference.
+#[test]
+fn ik_cylindrical_rpp_position() {
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "cylindrical_rpp",
+        "--pose",
+        "1,0,0,0.2,0,1,0,0.3,0,0,1,0.7,0,0,0,1",
+        "--json",
+    ]))
+    .unwrap();
+    let (robot, _) = toml_file::load_file(&robot_file("cylindrical_rpp")).unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 2, "{out}");
+    for q in solutions {
+        let t = reference.fk(&floats(q)).unwrap();
+        let p = [t[(0, 3)], t[(1, 3)], t[(2, 3)]];
+        assert!(
+            (p[0] - 0.2).abs() < 1e-12 && (p[1] - 0.3).abs() < 1e-12 && (p[2] - 0.7).abs() < 1e-12,
+            "{p:?}"
+        );
+    }
+}
+
 #[test]
 fn show_what_ik_lists_the_derivation() {
     insta::assert_snapshot!("show_ik_ur5", stdout(&["show", "ur5", "--what", "ik"]));
     // Read from the tool, joint 7 free by default; every joint that would do is listed.
     insta::assert_snapshot!("show_ik_panda", stdout(&["show", "panda", "--what", "ik"]));
+    // Three joints placing the tool point: the cylindrical arm.
+    insta::assert_snapshot!(
+        "show_ik_cylindrical_rpp",
+        stdout(&["show", "cylindrical_rpp", "--what", "ik"])
+    );
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "6"]);
     assert!(text.contains("(joint 6 locked)"), "{text}");
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "2"]);
