@@ -17,7 +17,7 @@
 
 use crate::ik::geometry::{meet, Geometry, Pose, V3};
 use crate::ik::solutions::Candidates;
-use crate::ik::subproblems::{sp1, sp2, sp3, sp4, Fit, ROOT_MERGE};
+use crate::ik::subproblems::{slide, sp1, sp2, sp3, sp4, Fit};
 
 /// **R R R, h1 ∩ h2** (at `c12`; the anthropomorphic arm without offsets):
 ///
@@ -76,7 +76,7 @@ pub fn position_parallel<const K: usize>(
 
 /// **R R P, h1 ∩ h2** (at `c12`; the spherical arm, the Stanford arm's first three joints):
 ///
-/// 1. q3 — `‖u + q3 h3‖ = ‖p − c12‖`, `u = pT − c12` (a quadratic: two roots)
+/// 1. q3 — the slide to a distance: `‖u + q3 h3‖ = ‖p − c12‖`, `u = pT − c12` (two roots)
 /// 2. (q1, q2) — SP2: `rot(−h1, q1) (p − c12) = rot(h2, q2) (u + q3 h3)`
 ///
 /// Up to four solutions (the two of q3 on either side of the shoulder).
@@ -90,20 +90,7 @@ pub fn position_intersecting_prismatic<const K: usize>(
     let c12 = meet(g, 0, 1);
     let u = g.p_tool - c12;
     let d = pose.p - c12;
-    // q3² + 2 b q3 + c = 0.
-    let b = h3.dot(&u);
-    let c = u.norm_squared() - d.norm_squared();
-    let disc = b * b - c;
-    let merge = ROOT_MERGE * f64::EPSILON * (b * b + u.norm_squared() + d.norm_squared());
-    let (roots, fit): ([f64; 2], Fit) = if disc.abs() <= merge {
-        ([-b, -b], Fit::Double)
-    } else if disc < 0.0 {
-        ([-b, -b], Fit::LeastSquares)
-    } else {
-        let s = crate::math::sqrt(disc);
-        ([-b + s, -b - s], Fit::Exact)
-    };
-    let n3 = if fit == Fit::Exact { 2 } else { 1 };
+    let (roots, n3, fit) = slide(&u, &h3, d.norm());
     for &q3 in &roots[..n3] {
         let arm = u + h3 * q3;
         let (t12, n, f12) = sp2(&d, &arm, &(-h1), &h2, (free[0], free[1]));
@@ -231,13 +218,28 @@ mod tests {
         p
     }
 
-    fn geometry(h: [V3; 3], p: [V3; 3], prismatic: [bool; 3], tool: V3) -> Geometry<3> {
+    /// A random arm with joints `prismatic`, axes 1 and 2 meeting (`meet`) and axes 2 and 3
+    /// antiparallel (`parallel`) where asked, every other relation general.
+    fn random(
+        rng: &mut XorShift64,
+        prismatic: [bool; 3],
+        meet: bool,
+        parallel: bool,
+    ) -> Geometry<3> {
+        let mut h = [unit(rng), unit(rng), unit(rng)];
+        let mut p = [point(rng), point(rng), point(rng)];
+        if parallel {
+            h[2] = -h[1];
+        }
+        if meet {
+            p[1] = p[0];
+        }
         Geometry {
             h,
             p,
             prismatic,
             r_tool: M3::identity(),
-            p_tool: tool,
+            p_tool: point(rng),
         }
     }
 
@@ -290,16 +292,7 @@ mod tests {
     #[test]
     fn intersecting_shoulder() {
         check(
-            |rng| {
-                let c = point(rng);
-                let h1 = unit(rng);
-                geometry(
-                    [h1, unit(rng), unit(rng)],
-                    [c, c, point(rng)],
-                    [false; 3],
-                    point(rng),
-                )
-            },
+            |r| random(r, [false; 3], true, false),
             |g, p, o| position_intersecting(g, p, &[0.0; 3], o),
         );
     }
@@ -307,15 +300,7 @@ mod tests {
     #[test]
     fn parallel_elbow() {
         check(
-            |rng| {
-                let h2 = unit(rng);
-                geometry(
-                    [unit(rng), h2, -h2],
-                    [point(rng), point(rng), point(rng)],
-                    [false; 3],
-                    point(rng),
-                )
-            },
+            |r| random(r, [false; 3], false, true),
             |g, p, o| position_parallel(g, p, &[0.0; 3], o),
         );
     }
@@ -323,36 +308,16 @@ mod tests {
     #[test]
     fn spherical_arm() {
         check(
-            |rng| {
-                let c = point(rng);
-                geometry(
-                    [unit(rng), unit(rng), unit(rng)],
-                    [c, c, point(rng)],
-                    [false, false, true],
-                    point(rng),
-                )
-            },
+            |r| random(r, [false, false, true], true, false),
             |g, p, o| position_intersecting_prismatic(g, p, &[0.0; 3], o),
         );
     }
 
     #[test]
     fn cylindrical_and_its_reverse() {
-        for first in [true, false] {
-            let prismatic = if first {
-                [false, true, true]
-            } else {
-                [true, true, false]
-            };
+        for (first, prismatic) in [(true, [false, true, true]), (false, [true, true, false])] {
             check(
-                |rng| {
-                    geometry(
-                        [unit(rng), unit(rng), unit(rng)],
-                        [point(rng), point(rng), point(rng)],
-                        prismatic,
-                        point(rng),
-                    )
-                },
+                |r| random(r, prismatic, false, false),
                 |g, p, o| position_one_revolute(g, p, first, &[0.0; 3], o),
             );
         }
@@ -361,14 +326,7 @@ mod tests {
     #[test]
     fn cartesian() {
         check(
-            |rng| {
-                geometry(
-                    [unit(rng), unit(rng), unit(rng)],
-                    [point(rng), point(rng), point(rng)],
-                    [true; 3],
-                    point(rng),
-                )
-            },
+            |r| random(r, [true; 3], false, false),
             |g, p, o| position_cartesian(g, p, &[0.0; 3], o),
         );
     }

@@ -9,7 +9,7 @@ use super::WristPair;
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
 use crate::ik::setup::wrist_centre;
 use crate::ik::solutions::Candidates;
-use crate::ik::subproblems::{sp1, sp2, sp3, sp4, Fit};
+use crate::ik::subproblems::{slide, sp1, sp2, sp3, sp4, Fit};
 
 /// **Spherical wrist, h1 ∩ h2** (the shoulder axes meet):
 ///
@@ -128,21 +128,8 @@ pub fn spherical_two_intersecting_prismatic(
     let [h1, h2, h3, ..] = g.h;
     let u = w0 - c12;
     let p16 = w - c12;
-    // q3² + 2 b q3 + c = 0
-    let b = h3.dot(&u);
-    let c = u.norm_squared() - p16.norm_squared();
-    let disc = b * b - c;
-    let terms = b * b + u.norm_squared() + p16.norm_squared();
-    let merge = crate::ik::subproblems::ROOT_MERGE * f64::EPSILON * terms;
-    let (roots, fit): ([f64; 2], Fit) = if disc.abs() <= merge {
-        ([-b, -b], Fit::Double)
-    } else if disc < 0.0 {
-        ([-b, -b], Fit::LeastSquares)
-    } else {
-        let s = crate::math::sqrt(disc);
-        ([-b + s, -b - s], Fit::Exact)
-    };
-    let n3 = if fit == Fit::Exact { 2 } else { 1 };
+    // q3 — ‖u + q3 h3‖ = ‖p16‖ (joints 1, 2 keep the distance from c12).
+    let (roots, n3, fit) = slide(&u, &h3, p16.norm());
     for &q3 in &roots[..n3] {
         let arm = u + h3 * q3;
         let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));

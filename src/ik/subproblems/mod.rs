@@ -12,7 +12,8 @@
 //!
 //! One file per subproblem, its scalar and lane forms together: SP1 ([`sp1()`], in the
 //! plane ⟂ its axis [`sp1_planar`]), SP2 ([`sp2()`]), SP3 ([`sp3()`], [`Sp3`],
-//! [`Sp3Lanes`]), SP4 ([`sp4()`], [`Sp4`], [`Sp4Lanes`]). Here, what they share: the fits
+//! [`Sp3Lanes`]), SP4 ([`sp4()`], [`Sp4`], [`Sp4Lanes`]), and for a prismatic joint the
+//! slide to a distance ([`slide()`], `slide.rs`). Here, what they share: the fits
 //! ([`Fit`]) and roots ([`Roots`], [`RootLanes`]) they return, the tolerances, the
 //! equation `a cos θ + a' sin θ = b` that SP3 and SP4 come down to, and angle wrapping
 //! ([`wrap`], [`half_turn`]).
@@ -21,11 +22,13 @@ use super::geometry::{scale, sqrt0, Angle};
 use super::lanes::Lanes;
 use crate::math::{fast_atan2 as atan2, fast_atan2_n, sqrt};
 
+mod slide;
 mod sp1;
 mod sp2;
 mod sp3;
 mod sp4;
 
+pub use slide::slide;
 pub(crate) use sp1::sp1_fit_lanes;
 pub use sp1::{
     sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar, sp1_planar_angle, sp1_planar_sides,
