@@ -23,7 +23,7 @@
 //!
 //! Run: `cargo bench --manifest-path benches/rtb/Cargo.toml`.
 
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, PI};
 use std::hint::black_box;
 
 #[path = "../../common/ik.rs"]
@@ -179,6 +179,10 @@ struct Tally {
     /// many of them it is among the answers.
     singular_poses: usize,
     found_singular: usize,
+    /// Per joint, at how many regular poses whose generating configuration is not among
+    /// the answers that joint is within 5e-3 of ±π/2 (modulo whole turns): where a
+    /// derivation divides by a cosine, it shows.
+    missed_at_half_turn: [usize; 6],
 }
 
 impl Tally {
@@ -204,6 +208,10 @@ impl Tally {
         if robot.jacobian_det(q0).is_some_and(|d| d.abs() < 1e-9) {
             self.singular_poses += 1;
             self.found_singular += found as usize;
+        } else if !found {
+            for (n, q) in self.missed_at_half_turn.iter_mut().zip(q0) {
+                *n += ((q.rem_euclid(PI) - FRAC_PI_2).abs() < 5e-3) as usize;
+            }
         }
     }
 
@@ -228,6 +236,13 @@ impl Tally {
             self.found_singular,
             self.singular_poses
         );
+        let missed = POSES - self.singular_poses + self.found_singular - self.found;
+        if missed > 0 {
+            println!(
+                "{label} of the {missed} regular poses missed, joints 1-6 within 5e-3 of ±π/2 at: {:?}",
+                self.missed_at_half_turn
+            );
+        }
     }
 }
 
