@@ -345,8 +345,8 @@ fn inside_limits((s, c): (f64, f64), [lo, hi]: [f64; 2], lsc: &[(f64, f64); 2]) 
 /// its limits). For an S-R-S arm with an orthogonal shoulder and wrist (the engine
 /// decides it; see the module docs): each joint meets each limit where a sinusoid of ψ
 /// vanishes; between those angles (and their mirror images, which only split an
-/// interval) a joint stays on one side, decided at the midpoint from the same sinusoids
-/// (no solve per piece: the signs of the same sinusoids at the limits).
+/// interval) a joint stays on one side, decided at the midpoint from the signs of the
+/// same sinusoids at the limits (no solve per piece).
 pub fn arm_angle_intervals(
     g: &Geometry<7>,
     pose: &Pose,
@@ -368,7 +368,7 @@ pub fn arm_angle_intervals(
     else {
         return out;
     };
-    if t4.fit == Fit::LeastSquares {
+    if t4.fit == Fit::LeastSquares || !within(q4.theta, limits[3]) {
         return out;
     }
     let r4 = q4.rot(&srs.h[3]);
@@ -410,9 +410,6 @@ pub fn arm_angle_intervals(
     edges[0] = -PI;
     edges[1..=n].copy_from_slice(cuts);
     edges[n + 1] = PI;
-    if !within(q4.theta, limits[3]) {
-        return out;
-    }
     let inside = |psi: f64| {
         let sc = crate::math::sin_cos(psi);
         groups

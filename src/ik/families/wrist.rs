@@ -91,11 +91,6 @@ impl Wrist {
                 return 2;
             }
         }
-        if t5.fit == Fit::Double {
-            if let Some(n) = self.split(t5.angles[0], (r36_h6, r36t_h4), r36, free, out) {
-                return n;
-            }
-        }
         for (o, q5) in out.iter_mut().zip(t5.as_slice()) {
             let (q4, f4) = sp1(&self.h6_about_h5.at(q5), &r36_h6, h4, free[0]);
             let (q6, f6) = if f4 == Fit::Free {
@@ -109,46 +104,40 @@ impl Wrist {
             };
             *o = ([q4, q5.theta, q6], t5.fit.and(f4).and(f6));
         }
+        if t5.fit == Fit::Double {
+            if let Some(n) = self.split(out[0].0, (r36_h6, r36t_h4), r36(), free, out) {
+                return n;
+            }
+        }
         t5.n
     }
 
     /// A q5 merged into a double root (two roots closer than SP4's merge distance,
-    /// `2√1e-11 ≈ 6e-6` rad) whose wrist misses `R36` by more than rounding: the two roots
-    /// were both real — the wrist a few µrad from its singularity, not at it — so both are
-    /// solved (q4, q6 by SP1, then [`Wrist::polish`]) and flagged `Double`, for `finish` to
-    /// check against `fk`. `None` — the merged branch stays — where it makes `R36` to
+    /// `2√1e-11 ≈ 6e-6` rad) whose branch `merged` (as [`Wrist::solve`] found it) misses
+    /// `R36` (`m`) by more than rounding: the two roots were both real — the wrist a few
+    /// µrad from its singularity, not at it — so both are solved (q4, q6 by SP1, then
+    /// [`Wrist::polish`]) and flagged `Double`, for `finish` to check against `fk`. `None` — the merged branch stays — where it makes `R36` to
     /// rounding (the wrist is at its singularity, where the merged branch, with q4 free,
     /// is the answer) or either split branch misses `R36` by as much.
     #[cold]
     fn split(
         &self,
-        merged: crate::ik::geometry::Angle,
+        merged: [f64; 3],
         (r36_h6, r36t_h4): (V3, V3),
-        r36: &impl Fn() -> M3,
+        m: M3,
         free: [f64; 2],
         out: &mut [([f64; 3], Fit); 2],
     ) -> Option<usize> {
         let [h4, h5, h6] = &self.h;
-        let m = r36();
-        // The merged branch's q4 and q6 as the loop below finds them (q4 free only at
-        // `h4 ∥ R5 h6`).
-        let (q4, f4) = sp1(&self.h6_about_h5.at(&merged), &r36_h6, h4, free[0]);
-        let q6 = if f4 == Fit::Free {
-            let rest = (rot(h4, q4) * merged.rot(h5)).transpose() * m;
-            let x = orthogonal(h6);
-            sp1(&x, &(rest * x), h6, free[1]).0
-        } else {
-            sp1(&r36t_h4, &self.h4_about_h5.back(&merged), h6, free[1]).0
-        };
         let miss = |[q4, q5, q6]: [f64; 3]| (rot(h4, q4) * rot(h5, q5) * rot(h6, q6) - m).amax();
-        let merged_miss = miss([q4, merged.theta, q6]);
+        let merged_miss = miss(merged);
         if merged_miss <= MERGED_WRIST {
             return None;
         }
         // The two roots; where rounding hid them (|q5 − q5*| below ~1e-8: the
         // discriminant is lost), q5 moved from the merged root either way by its miss.
         let roots = self.q5.split(h4.dot(&r36_h6)).unwrap_or_else(|| {
-            [merged_miss, -merged_miss].map(|d| crate::ik::geometry::Angle::new(merged.theta + d))
+            [merged_miss, -merged_miss].map(|d| crate::ik::geometry::Angle::new(merged[1] + d))
         });
         let mut split = [([0.0; 3], Fit::Double); 2];
         for (o, q5) in split.iter_mut().zip(&roots) {
