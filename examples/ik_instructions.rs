@@ -14,32 +14,20 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use kinegen::ik::XorShift64;
 use kinegen::Kinematics;
 use kinegen_robots::{Panda, Puma560, Ur5};
 
-/// The poses of `benches/common/ik.rs::poses` for `seed`, with their configurations.
-fn poses<const N: usize, R: Kinematics<N>>(
-    robot: &R,
-    seed: u64,
-    count: usize,
-) -> Vec<([[f64; 4]; 4], [f64; N])> {
-    let limits = robot.limits();
-    let mut rng = XorShift64::new(seed);
-    (0..count)
-        .map(|_| {
-            let q = rng.configuration(&limits);
-            (robot.fk(&q), q)
-        })
-        .collect()
-}
+// The bench's own poses (fk of configurations drawn within the limits, seeded).
+#[path = "../benches/common/ik.rs"]
+#[allow(dead_code)]
+mod ik_common;
 
 /// `ik(robot, pose, q)`: the number of solutions for `pose`, made by configuration `q`.
 fn run<const N: usize, R: Kinematics<N>>(
     robot: &R,
     ik: impl Fn(&R, &[[f64; 4]; 4], &[f64; N]) -> usize,
 ) {
-    let poses = poses(robot, 2026, 1000);
+    let poses = ik_common::poses(robot, 2026, 1000);
     let start = Instant::now();
     let mut solutions = 0;
     for _ in 0..20 {
