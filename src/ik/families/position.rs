@@ -15,7 +15,7 @@
 //! and `Ri = rot(hi, qi)` (a prismatic joint adds `qi hi` after the rotations before it):
 //! `p = p1 + R1 (p2 − p1) + R1 R2 (p3 − p2) + R1 R2 R3 (pT − p3)`.
 
-use crate::ik::geometry::{meet, Geometry, Pose, V3};
+use crate::ik::geometry::{meet, Angle, Geometry, Pose, M3, V3};
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{slide, sp1, sp2, sp3, sp4, Fit};
 
@@ -31,16 +31,62 @@ pub fn position_intersecting<const K: usize>(
     free: &[f64; 3],
     out: &mut Candidates<3, K>,
 ) {
-    let [h1, h2, h3] = g.h;
     let c12 = meet(g, 0, 1);
-    let (p23, p3t) = (g.p[2] - c12, g.p_tool - g.p[2]);
-    let d = pose.p - c12;
-    let t3 = sp3(&p3t, &(-p23), &h3, d.norm(), free[2]);
+    shoulder_elbow(g, c12, g.p_tool, pose.p, free, |q1, q2, q3, _, fit| {
+        out.push([q1.theta, q2.theta, q3.theta], fit)
+    });
+}
+
+/// The point `end` of an arm (at `q = 0`) placed at `target` by its first three joints,
+/// revolute, axes 1 and 2 meeting at `c12`: q3 — SP3 (joints 1, 2 keep the distance from
+/// c12), (q1, q2) — SP2. Each solution goes to `each(q1, q2, q3, R3, fit)`. The position
+/// arm with h1 ∩ h2 (`end` the tool point) and the arm of the spherical-wrist family with
+/// h1 ∩ h2 (`end` the wrist centre) are this.
+#[inline(always)]
+pub(super) fn shoulder_elbow<const N: usize>(
+    g: &Geometry<N>,
+    c12: V3,
+    end: V3,
+    target: V3,
+    free: &[f64],
+    mut each: impl FnMut(&Angle, &Angle, &Angle, &M3, Fit),
+) {
+    let [h1, h2, h3] = [g.h[0], g.h[1], g.h[2]];
+    let (p23, p3e) = (g.p[2] - c12, end - g.p[2]);
+    let d = target - c12;
+    let t3 = sp3(&p3e, &(-p23), &h3, d.norm(), free[2]);
     for q3 in t3.as_slice() {
-        let arm = p23 + q3.rot(&h3) * p3t;
+        let r3 = q3.rot(&h3);
+        let arm = p23 + r3 * p3e;
         let (t12, n, f12) = sp2(&d, &arm, &(-h1), &h2, (free[0], free[1]));
         for (q1, q2) in &t12[..n] {
-            out.push([q1.theta, q2.theta, q3.theta], t3.fit.and(f12));
+            each(q1, q2, q3, &r3, t3.fit.and(f12));
+        }
+    }
+}
+
+/// [`shoulder_elbow`] with joint 3 prismatic: q3 — the slide to a distance `‖u + q3 h3‖
+/// = ‖target − c12‖`, `u = end − c12`, then (q1, q2) — SP2; each solution to `each(q1,
+/// q2, q3, fit)`. The spherical (R R P) position arm and the Stanford arm's first three
+/// joints.
+#[inline(always)]
+pub(super) fn shoulder_slide<const N: usize>(
+    g: &Geometry<N>,
+    c12: V3,
+    end: V3,
+    target: V3,
+    free: &[f64],
+    mut each: impl FnMut(&Angle, &Angle, f64, Fit),
+) {
+    let [h1, h2, h3] = [g.h[0], g.h[1], g.h[2]];
+    let u = end - c12;
+    let d = target - c12;
+    let (roots, n3, fit) = slide(&u, &h3, d.norm());
+    for &q3 in &roots[..n3] {
+        let arm = u + h3 * q3;
+        let (t12, n, f12) = sp2(&d, &arm, &(-h1), &h2, (free[0], free[1]));
+        for (q1, q2) in &t12[..n] {
+            each(q1, q2, q3, fit.and(f12));
         }
     }
 }
@@ -86,18 +132,10 @@ pub fn position_intersecting_prismatic<const K: usize>(
     free: &[f64; 3],
     out: &mut Candidates<3, K>,
 ) {
-    let [h1, h2, h3] = g.h;
     let c12 = meet(g, 0, 1);
-    let u = g.p_tool - c12;
-    let d = pose.p - c12;
-    let (roots, n3, fit) = slide(&u, &h3, d.norm());
-    for &q3 in &roots[..n3] {
-        let arm = u + h3 * q3;
-        let (t12, n, f12) = sp2(&d, &arm, &(-h1), &h2, (free[0], free[1]));
-        for (q1, q2) in &t12[..n] {
-            out.push([q1.theta, q2.theta, q3], fit.and(f12));
-        }
-    }
+    shoulder_slide(g, c12, g.p_tool, pose.p, free, |q1, q2, q3, fit| {
+        out.push([q1.theta, q2.theta, q3], fit)
+    });
 }
 
 /// **One revolute joint and two prismatic, the revolute joint first (R P P, the
@@ -182,7 +220,7 @@ fn two_slides(a: &V3, b: &V3, v: &V3) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ik::geometry::{rot, M3};
+    use crate::ik::geometry::rot;
     use crate::ik::XorShift64;
 
     fn unit(rng: &mut XorShift64) -> V3 {

@@ -4,12 +4,13 @@
 //! from SP2, then the wrist (`wrist.rs`). Where a 7-joint arm's locked joint lines the
 //! shoulder's axes up, the parallel-shoulder decomposition instead.
 
+use super::position::{shoulder_elbow, shoulder_slide};
 use super::wrist::{with_wrist, Wrist};
 use super::WristPair;
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
 use crate::ik::setup::wrist_centre;
 use crate::ik::solutions::Candidates;
-use crate::ik::subproblems::{slide, sp1, sp2, sp3, sp4, Fit};
+use crate::ik::subproblems::{sp1, sp3, sp4, Fit};
 
 /// **Spherical wrist, h1 ∩ h2** (the shoulder axes meet):
 ///
@@ -26,7 +27,7 @@ pub fn spherical_two_intersecting(
 ) {
     let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
-    let [h1, h2, h3, ..] = g.h;
+    let [h1, h2, ..] = g.h;
     let skew = h1.cross(&h2).norm_squared();
     if skew <= SHOULDER_PARALLEL {
         parallel_shoulder(g, &wrist, (r06, w0, w), free, out);
@@ -40,20 +41,12 @@ pub fn spherical_two_intersecting(
         Fit::Exact
     };
     let c12 = meet(g, 0, 1);
-    let (p23, p34) = (g.p[2] - c12, w0 - g.p[2]);
-    let p16 = w - c12;
-    let t3 = sp3(&p34, &(-p23), &h3, p16.norm(), free[2]);
-    for q3 in t3.as_slice() {
-        let r3 = q3.rot(&h3);
-        let arm = p23 + r3 * p34;
-        let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
-        for (q1, q2) in &t12[..n] {
-            let r36 = (q1.rot(&h1) * q2.rot(&h2) * r3).transpose() * r06;
-            let q123 = [q1.theta, q2.theta, q3.theta];
-            let wrist_of = (wrist.target(&r36), || r36);
-            with_wrist(&wrist, q123, wrist_of, t3.fit.and(f12).and(far), free, out);
-        }
-    }
+    shoulder_elbow(g, c12, w0, w, free, |q1, q2, q3, r3, fit| {
+        let r36 = (q1.rot(&h1) * q2.rot(&h2) * r3).transpose() * r06;
+        let q123 = [q1.theta, q2.theta, q3.theta];
+        let wrist_of = (wrist.target(&r36), || r36);
+        with_wrist(&wrist, q123, wrist_of, fit.and(far), free, out);
+    });
 }
 
 /// `|h1 × h2|²` at or below which the shoulder's axes are taken as parallel: the engine
@@ -125,20 +118,12 @@ pub fn spherical_two_intersecting_prismatic(
     let wrist = Wrist::new(g, pair);
     let (r06, w0, w) = wrist_centre(g, pose);
     let c12 = meet(g, 0, 1);
-    let [h1, h2, h3, ..] = g.h;
-    let u = w0 - c12;
-    let p16 = w - c12;
-    // q3 — ‖u + q3 h3‖ = ‖p16‖ (joints 1, 2 keep the distance from c12).
-    let (roots, n3, fit) = slide(&u, &h3, p16.norm());
-    for &q3 in &roots[..n3] {
-        let arm = u + h3 * q3;
-        let (t12, n, f12) = sp2(&p16, &arm, &(-h1), &h2, (free[0], free[1]));
-        for (q1, q2) in &t12[..n] {
-            // Joint 3 slides: it turns nothing.
-            let r36 = (q1.rot(&h1) * q2.rot(&h2)).transpose() * r06;
-            let q123 = [q1.theta, q2.theta, q3];
-            let wrist_of = (wrist.target(&r36), || r36);
-            with_wrist(&wrist, q123, wrist_of, fit.and(f12), free, out);
-        }
-    }
+    let [h1, h2, ..] = g.h;
+    shoulder_slide(g, c12, w0, w, free, |q1, q2, q3, fit| {
+        // Joint 3 slides: it turns nothing.
+        let r36 = (q1.rot(&h1) * q2.rot(&h2)).transpose() * r06;
+        let q123 = [q1.theta, q2.theta, q3];
+        let wrist_of = (wrist.target(&r36), || r36);
+        with_wrist(&wrist, q123, wrist_of, fit, free, out);
+    });
 }
