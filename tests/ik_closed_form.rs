@@ -223,66 +223,63 @@ kinegen::kinematics! {
     pub struct Ur16eUrdf = urdf("robots/urdf/ur16e.urdf", base = "base_link", tip = "tool0");
 }
 
-/// The UR16e's URDF at its wrist singularity (q5 = 0), where the issue saw least-squares
-/// branches with residuals of 2.1e-10 and 3.7e-10: every pose must have an exact branch
-/// and `ik_near` must return the generating configuration.
-#[test]
-fn ur16e_urdf_at_the_wrist_singularity() {
-    let robot = Ur16eUrdf;
-    let mut rng = XorShift64::new(16);
-    let mut tally = Tally::default();
-    for _ in 0..2_000 {
-        let mut q = configuration(&mut rng, &Ur16eUrdf::LIMITS, &Ur16eUrdf::REVOLUTE);
-        q[4] = 0.0;
-        let pose = robot.fk(&q);
-        let sols = robot.ik(&pose);
-        let near = robot.ik_near(&pose, &q);
-        check(
-            "Ur16eUrdf",
-            &q,
-            &pose,
-            &sols,
-            near,
-            true,
-            true,
-            &Ur16eUrdf::REVOLUTE,
-            |x| robot.fk(x),
-            pose_error,
-        );
-        tally.add(true, &sols);
-    }
-    eprintln!("Ur16eUrdf at q5 = 0: {tally:?}");
+/// `$cases` seeded configurations of a robot with joint `$joint` (0-based) pinned at 0,
+/// where the robot is singular, through [`check`]: every pose has an exact branch, a
+/// flagged one, and `ik_near` returns the generating configuration.
+macro_rules! pinned_singular_test {
+    ($(#[$doc:meta])* $test:ident, $ty:ty, $seed:expr, $cases:expr, q[$joint:expr] = 0, $gap:expr) => {
+        $(#[$doc])*
+        #[test]
+        fn $test() {
+            let robot = <$ty>::default();
+            let mut rng = XorShift64::new($seed);
+            let mut tally = Tally::default();
+            for _ in 0..$cases {
+                let mut q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
+                q[$joint] = 0.0;
+                let pose = robot.fk(&q);
+                let sols = robot.ik(&pose);
+                let near = robot.ik_near(&pose, &q);
+                check(
+                    stringify!($ty),
+                    &q,
+                    &pose,
+                    &sols,
+                    near,
+                    true,
+                    true,
+                    &<$ty>::REVOLUTE,
+                    |x| robot.fk(x),
+                    $gap,
+                );
+                tally.add(true, &sols);
+            }
+            eprintln!("{} with q{} = 0: {tally:?}", stringify!($ty), $joint + 1);
+        }
+    };
 }
 
-/// The cylindrical arm with its reach at zero (q3 = 0: the tool point on axis 1, where
-/// the base rotation is free): an exact solution, and `ik_near` keeps the current q1.
-#[test]
-fn cylindrical_rpp_on_its_axis() {
-    let robot = CylindricalRpp::default();
-    let mut rng = XorShift64::new(33);
-    let mut tally = Tally::default();
-    for _ in 0..1_000 {
-        let mut q = configuration(&mut rng, &CylindricalRpp::LIMITS, &CylindricalRpp::REVOLUTE);
-        q[2] = 0.0;
-        let pose = robot.fk(&q);
-        let sols = robot.ik(&pose);
-        let near = robot.ik_near(&pose, &q);
-        check(
-            "CylindricalRpp",
-            &q,
-            &pose,
-            &sols,
-            near,
-            true,
-            true,
-            &CylindricalRpp::REVOLUTE,
-            |x| robot.fk(x),
-            task_gap(&[0, 1, 2]),
-        );
-        tally.add(true, &sols);
-    }
-    eprintln!("CylindricalRpp at q3 = 0: {tally:?}");
-}
+pinned_singular_test!(
+    /// The UR16e's URDF at its wrist singularity (q5 = 0), where the issue saw
+    /// least-squares branches with residuals of 2.1e-10 and 3.7e-10.
+    ur16e_urdf_at_the_wrist_singularity,
+    Ur16eUrdf,
+    16,
+    2_000,
+    q[4] = 0,
+    pose_error
+);
+
+pinned_singular_test!(
+    /// The cylindrical arm with its reach at zero (q3 = 0: the tool point on axis 1, where
+    /// the base rotation is free; `ik_near` keeps the current q1).
+    cylindrical_rpp_on_its_axis,
+    CylindricalRpp,
+    33,
+    1_000,
+    q[2] = 0,
+    task_gap(&[0, 1, 2])
+);
 
 self_test!(ur16e_from_urdf, Ur16eUrdf, 1616);
 self_test!(ur3, Ur3, 3);
