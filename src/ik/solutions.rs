@@ -48,6 +48,11 @@ impl<const N: usize, const K: usize> Candidates<N, K> {
     pub fn as_slice(&self) -> &[Candidate<N>] {
         &self.items[..self.len]
     }
+
+    /// The candidates, to be changed in place (a family polishing its branches).
+    pub fn as_mut_slice(&mut self) -> &mut [Candidate<N>] {
+        &mut self.items[..self.len]
+    }
 }
 
 /// One IK solution (a branch: shoulder, elbow, wrist choice), in the robot's scalar `T`
@@ -274,7 +279,7 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             at_singularity: match c.fit {
                 Fit::Double | Fit::Free => true,
                 Fit::LeastSquares => exact,
-                Fit::Exact => false,
+                Fit::Exact | Fit::Checked => false,
             },
             within_limits,
         };

@@ -1,4 +1,4 @@
-//! The geometric subproblems closed-form IK is built from (Paden–Kahan 1–3, Elias–Wen 4),
+//! The geometric subproblems closed-form IK is built from (Paden–Kahan 1–3, Elias–Wen 4–6),
 //! each with its geometric statement, least-squares behaviour and degenerate cases.
 //!
 //! Every axis `k` is a unit vector. Angles come back as radians; a result says whether it
@@ -12,8 +12,10 @@
 //!
 //! One file per subproblem, its scalar and lane forms together: SP1 ([`sp1()`], in the
 //! plane ⟂ its axis [`sp1_planar`]), SP2 ([`sp2()`]), SP3 ([`sp3()`], [`Sp3`],
-//! [`Sp3Lanes`]), SP4 ([`sp4()`], [`Sp4`], [`Sp4Lanes`]), and for a prismatic joint the
-//! slide to a distance ([`slide()`], `slide.rs`). Here, what they share: the fits
+//! [`Sp3Lanes`]), SP4 ([`sp4()`], [`Sp4`], [`Sp4Lanes`]), SP5 ([`sp5()`]) and SP6
+//! ([`sp6()`], [`two_sinusoids`]) with the quartic both come down to ([`TrigQuadratic`],
+//! `quartic.rs`), and for a prismatic joint the slide to a distance ([`slide()`],
+//! `slide.rs`). Here, what they share: the fits
 //! ([`Fit`]) and roots ([`Roots`], [`RootLanes`]) they return, the tolerances, the
 //! equation `a cos θ + a' sin θ = b` that SP3 and SP4 come down to, and angle wrapping
 //! ([`wrap`], [`half_turn`]).
@@ -22,12 +24,16 @@ use super::geometry::{scale, sqrt0, Angle};
 use super::lanes::Lanes;
 use crate::math::{fast_atan2 as atan2, fast_atan2_n, sqrt};
 
+mod quartic;
 mod slide;
 mod sp1;
 mod sp2;
 mod sp3;
 mod sp4;
+mod sp5;
+mod sp6;
 
+pub use quartic::{QuarticRoots, TrigQuadratic, NEAR_PAIR};
 pub use slide::slide;
 pub(crate) use sp1::sp1_fit_lanes;
 pub use sp1::{
@@ -37,6 +43,8 @@ pub use sp1::{
 pub use sp2::sp2;
 pub use sp3::{sp3, Sp3, Sp3Lanes};
 pub use sp4::{sp4, Sp4, Sp4Lanes};
+pub use sp5::{sp5, Sp5Roots};
+pub use sp6::{sp6, two_sinusoids, Sp6Roots};
 
 /// A discriminant smaller than this many times its estimated rounding error
 /// (`ε · terms`) is zero: the two roots are one double root.
@@ -63,6 +71,9 @@ pub const ON_AXIS: f64 = 1e-18;
 pub enum Fit {
     /// Solves the equations (to rounding).
     Exact,
+    /// Solves the equations to a root finder's accuracy (a root of SP5's or SP6's
+    /// quartic): checked against `fk` before it is called exact.
+    Checked,
     /// A double root (two solutions that met): exact, at a singular configuration.
     Double,
     /// The angle is free (any value solves it): the caller's value was used.

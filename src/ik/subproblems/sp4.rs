@@ -38,7 +38,7 @@ pub(super) struct Sp4Circle {
 
 impl Sp4Circle {
     #[inline(always)]
-    fn terms(h: &V3, p: &V3, k: &V3) -> Sp4Circle {
+    pub(super) fn terms(h: &V3, p: &V3, k: &V3) -> Sp4Circle {
         // rot(k, θ) p = (k·p) k + cos θ p⊥ + sin θ (k × p)
         Sp4Circle {
             ca: h.dot(&flat(k, p)),
