@@ -140,6 +140,8 @@ fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<
         "spherical_two_parallel" => families::spherical_two_parallel,
         "spherical_two_intersecting" => families::spherical_two_intersecting,
         "spherical_two_intersecting_prismatic" => families::spherical_two_intersecting_prismatic,
+        "spherical" => families::spherical,
+        "three_parallel" => families::three_parallel,
         _ => return None,
     };
     let mut out = Candidates::default();

@@ -21,6 +21,7 @@ pub mod families;
 pub mod geometry;
 pub mod lanes;
 pub mod numeric;
+pub mod polish;
 pub mod regular;
 pub mod reversed;
 pub mod setup;

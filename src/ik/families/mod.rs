@@ -1,5 +1,5 @@
-//! The arm families with closed-form IK from subproblems SP1–SP4 (quadratics at most),
-//! after IK-Geo (Elias & Wen) and EAIK (Ostermeier et al.). The engine decides at
+//! The arm families with closed-form IK from subproblems SP1–SP4 (quadratics at most) and
+//! SP5/SP6 (a quartic), after IK-Geo (Elias & Wen) and EAIK (Ostermeier et al.). The engine decides at
 //! expansion time, exactly, which family a robot belongs to; these functions solve a pose
 //! for a [`Geometry`] that has the family's structure.
 //!
@@ -17,9 +17,11 @@
 //! `spherical_two_intersecting.rs` (spherical wrist, h1 ∩ h2, joint 3 revolute or
 //! prismatic: [`spherical_two_intersecting()`], [`spherical_two_intersecting_prismatic`]),
 //! `planar.rs` (every axis along world z: [`planar()`]), `position.rs` (three joints
-//! placing the tool point: [`position_intersecting`] and the other position cases); the
-//! spherical wrist the middle
-//! three end in is `wrist.rs`. A 7-joint S-R-S arm (the iiwa) is also solved by its arm
+//! placing the tool point: [`position_intersecting`] and the other position cases),
+//! and the two whose first step is a quartic, every branch checked against `fk`:
+//! `spherical.rs` (spherical wrist after three axes in no special position, SP5:
+//! [`spherical()`]) and `three_parallel.rs` (h2 ∥ h3 ∥ h4 with h5, h6 not meeting, SP6:
+//! [`three_parallel()`]); the spherical wrist four of them end in is `wrist.rs`. A 7-joint S-R-S arm (the iiwa) is also solved by its arm
 //! angle: `srs.rs` ([`srs_arm_angle`], [`arm_angle_intervals`]).
 
 use super::geometry::{Geometry, Pose};
@@ -27,9 +29,11 @@ use super::solutions::Candidates;
 
 mod planar;
 mod position;
+mod spherical;
 mod spherical_two_intersecting;
 mod spherical_two_parallel;
 mod srs;
+mod three_parallel;
 mod ur;
 mod wrist;
 
@@ -38,6 +42,7 @@ pub use position::{
     position_cartesian, position_intersecting, position_intersecting_prismatic,
     position_one_revolute, position_parallel,
 };
+pub use spherical::spherical;
 pub use spherical_two_intersecting::{
     spherical_two_intersecting, spherical_two_intersecting_prismatic,
 };
@@ -45,6 +50,7 @@ pub use spherical_two_parallel::{spherical_two_parallel, spherical_two_parallel_
 pub use srs::{
     arm_angle, arm_angle_intervals, configuration, srs_arm_angle, ArmAngleIntervals, Configuration,
 };
+pub use three_parallel::three_parallel;
 pub use ur::{three_parallel_two_intersecting, three_parallel_two_intersecting_by_branch};
 
 /// How a solver finds the second of a wrist's two solutions (the two roots of q5).

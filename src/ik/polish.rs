@@ -1,0 +1,93 @@
+//! Newton on the whole arm, for a branch built on an ill-conditioned root: where a
+//! quartic's roots cluster (a singular pose of an SP5/SP6 family, where three or four
+//! roots meet), rounding moves each by far more than `√ε`, and the subproblems after it
+//! carry that error into every joint. The branch is then brought onto the pose by damped
+//! Gauss–Newton steps on `fk` itself (damped: at a singular pose the Jacobian is singular
+//! too); the best iterate is kept, and `finish` checks it like any other.
+
+use super::geometry::{rot, Geometry, Pose, V3};
+use super::subproblems::Fit;
+use nalgebra::{Matrix6, Vector6};
+
+/// Gauss–Newton rounds. At a singular solution convergence is linear (about halving the
+/// error per round): twenty take an error of 1e-2 below 1e-8 on the way to rounding.
+const ROUNDS: usize = 24;
+
+/// `q` moved onto `pose` (see the module); `q` itself where no round improves it.
+pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
+    let (mut best, mut best_miss) = (q, f64::INFINITY);
+    let mut q = q;
+    for _ in 0..ROUNDS {
+        let (e, j) = error_and_jacobian(g, &q, pose);
+        let miss = e.amax();
+        if miss < best_miss {
+            (best, best_miss) = (q, miss);
+        } else if miss.is_nan() || miss > 2.0 * best_miss {
+            // Damped steps that stop improving have reached rounding (or failed).
+            break;
+        }
+        if miss <= 1e-15 * (1.0 + pose.p.amax()) {
+            break;
+        }
+        let jtj = j.transpose() * j;
+        let damping = 1e-14 * (0..6).map(|i| jtj[(i, i)]).fold(0.0, f64::max);
+        let a = jtj + Matrix6::identity() * damping;
+        let Some(step) = a.cholesky().map(|c| c.solve(&(j.transpose() * e))) else {
+            break;
+        };
+        for (qi, s) in q.iter_mut().zip(step.iter()) {
+            *qi += s;
+        }
+    }
+    best
+}
+
+/// The pose error `(position, rotation vector)` in the world frame, and the geometric
+/// Jacobian, at `q`.
+fn error_and_jacobian(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> (Vector6<f64>, Matrix6<f64>) {
+    let mut axes = [V3::zeros(); 6];
+    let mut points = [V3::zeros(); 6];
+    let mut r = nalgebra::Matrix3::identity();
+    let mut p = g.p[0];
+    for i in 0..6 {
+        let next = if i + 1 < 6 { g.p[i + 1] } else { g.p_tool };
+        axes[i] = r * g.h[i];
+        points[i] = p;
+        if g.prismatic[i] {
+            p += axes[i] * q[i];
+        } else {
+            r *= rot(&g.h[i], q[i]);
+        }
+        p += r * (next - g.p[i]);
+    }
+    let r_end = r * g.r_tool;
+    // R_target R_endᵀ ≈ I + [ω]× for a small rotation error ω.
+    let d = pose.r * r_end.transpose();
+    let w = 0.5 * V3::new(d.m32 - d.m23, d.m13 - d.m31, d.m21 - d.m12);
+    let dp = pose.p - p;
+    let e = Vector6::new(dp.x, dp.y, dp.z, w.x, w.y, w.z);
+    let mut j = Matrix6::zeros();
+    for i in 0..6 {
+        let (lin, ang) = if g.prismatic[i] {
+            (axes[i], V3::zeros())
+        } else {
+            (axes[i].cross(&(p - points[i])), axes[i])
+        };
+        for k in 0..3 {
+            j[(k, i)] = lin[k];
+            j[(k + 3, i)] = ang[k];
+        }
+    }
+    (e, j)
+}
+
+/// `q` as it is where its fit is [`Fit::Exact`] or [`Fit::Checked`] (every root it was
+/// built on well conditioned), else [`polish`]ed.
+#[inline]
+pub fn polished(g: &Geometry<6>, q: [f64; 6], pose: &Pose, fit: Fit) -> [f64; 6] {
+    if fit <= Fit::Checked {
+        q
+    } else {
+        polish(g, q, pose)
+    }
+}
