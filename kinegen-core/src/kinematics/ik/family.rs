@@ -12,6 +12,14 @@
 //! | planar | every axis along world z; task rows x, y (+ rz, + z) | planar 2R/3R, SCARA |
 //! | position | three joints, task rows x, y, z: R R R with h1 ∩ h2 or h2 ∥ h3, R R P with h1 ∩ h2, R P P, P P R, P P P | elbow, spherical, cylindrical, Cartesian arms |
 //!
+//! and, where none of those fits either way, the families whose first step is a quartic
+//! (SP5, SP6 — every branch checked against `fk`):
+//!
+//! | family | condition | |
+//! |---|---|---|
+//! | spherical wrist | h4, h5, h6 meet; axes 1–3 in no special position | SP5 for (q1, q2, q3) |
+//! | three parallel | h2 ∥ h3 ∥ h4, h5 and h6 not meeting | SP6 for (q1, q5) |
+//!
 //! Every 6-joint family is also matched on the chain **read from the tool to the base**
 //! (joints 6, 5, …, 1): a spherical *shoulder* (axes 1, 2, 3 meet) is the spherical wrist
 //! of the reversed chain, three parallel axes at the wrist are three parallel axes at its
@@ -56,6 +64,10 @@ pub enum Family {
     },
     /// Three joints placing the tool point (task rows x, y, z).
     Position(Position),
+    /// Spherical wrist, the first three axes in no special position: SP5 (a quartic).
+    Spherical,
+    /// h2 ∥ h3 ∥ h4, h5 and h6 not meeting: SP6 (a quartic).
+    ThreeParallel,
 }
 
 /// The cases of [`Family::Position`] (`kinegen::ik::families::position_*`).
@@ -119,7 +131,15 @@ impl Family {
             Family::Position(Position::IntersectingPrismatic) => "position_intersecting_prismatic",
             Family::Position(Position::OneRevolute { .. }) => "position_one_revolute",
             Family::Position(Position::Cartesian) => "position_cartesian",
+            Family::Spherical => "spherical",
+            Family::ThreeParallel => "three_parallel",
         }
+    }
+
+    /// The family's first step is a quartic (SP5 or SP6): chosen only where no family of
+    /// quadratics fits, either way round or with any joint locked.
+    pub fn quartic(&self) -> bool {
+        matches!(self, Family::Spherical | Family::ThreeParallel)
     }
 
     fn title(&self) -> &'static str {
@@ -143,6 +163,8 @@ impl Family {
                 revolute_first: false,
             }) => "position, P P R",
             Family::Position(Position::Cartesian) => "position, Cartesian (P P P)",
+            Family::Spherical => "spherical wrist, general arm (SP5)",
+            Family::ThreeParallel => "three parallel (SP6)",
         }
     }
 
@@ -236,9 +258,22 @@ fn finish(m: Match, locked: Option<usize>, lockable: Vec<usize>, why: Option<Str
     }
 }
 
-/// The 6-joint families on `labels`, read from the base, else from the tool (the labels
-/// reversed; the relations tested do not depend on the direction).
+/// The 6-joint families on `labels`: those of quadratics read from the base, else from the
+/// tool (the labels reversed; the relations tested do not depend on the direction), else
+/// the quartic ones the same way.
 fn either_way(axes: &Axes, kinds: &[JointKind], labels: &[usize]) -> Result<Match, String> {
+    match one_tier(axes, kinds, labels, six) {
+        Ok(m) => Ok(m),
+        Err(quadratic) => one_tier(axes, kinds, labels, six_quartic)
+            .map_err(|quartic| format!("{quadratic}; quartic families: {quartic}")),
+    }
+}
+
+/// What [`six`] and [`six_quartic`] return for some labels.
+type Six = fn(&Axes, &[JointKind], &[usize]) -> Result<(Family, Vec<String>, bool), String>;
+
+/// The families of `six` on `labels`, read from the base, else from the tool.
+fn one_tier(axes: &Axes, kinds: &[JointKind], labels: &[usize], six: Six) -> Result<Match, String> {
     let forward = match six(axes, kinds, labels) {
         Ok((family, steps, half_turn)) => {
             return Ok(Match {
@@ -373,6 +408,66 @@ fn six(
     Err(why.join("; "))
 }
 
+/// The 6-joint families whose first step is a quartic, for axes `labels` of `axes`: tried
+/// where no family of quadratics ([`six`]) fits either way.
+fn six_quartic(
+    axes: &Axes,
+    kinds: &[JointKind],
+    labels: &[usize],
+) -> Result<(Family, Vec<String>, bool), String> {
+    let j = |i: usize| labels[i] + 1;
+    let a = |i: usize| labels[i];
+    if labels.iter().any(|&i| kinds[i] != JointKind::Revolute) {
+        return Err("a joint is prismatic".into());
+    }
+    let mut why = Vec::new();
+    // SP5's two equations in (q1, q3) — along h2 and the length — have coefficient
+    // matrices (one per angle) that are singular for every pose when h1 ∥ h2 (or h1 ∩ h2)
+    // and when h2 ∥ h3 (or h2 ∩ h3); with both, the angles are not found this way.
+    if !axes.concurrent(a(3), a(4), a(5)) {
+        why.push(format!(
+            "spherical wrist: axes {}, {}, {} do not meet in one point",
+            j(3),
+            j(4),
+            j(5)
+        ));
+    } else if axes.parallel(a(0), a(1)) && (axes.parallel(a(1), a(2)) || axes.intersect(a(1), a(2)))
+    {
+        why.push(format!(
+            "spherical wrist: axes {} and {} are parallel and axes {} and {} parallel or meeting (SP5 does not determine q{} and q{})",
+            j(0), j(1), j(1), j(2), j(0), j(2)
+        ));
+    } else {
+        let half = axes.perpendicular(a(3), a(4)) && axes.perpendicular(a(4), a(5));
+        return Ok((Family::Spherical, steps_spherical(j, half), half));
+    }
+    // SP6 on the components along h2: its matrix in q5 is singular when h5 ∥ h2, h5 ∥ h6
+    // or h5 ∩ h6 (the UR family), its matrix in q1 when h1 ∥ h2.
+    let c = if !axes.parallel(a(1), a(2)) || !axes.parallel(a(2), a(3)) {
+        Err(format!(
+            "axes {}, {}, {} are not parallel",
+            j(1),
+            j(2),
+            j(3)
+        ))
+    } else if axes.parallel(a(0), a(1)) {
+        Err(format!("axis {} is parallel to axis {}", j(0), j(1)))
+    } else if axes.parallel(a(4), a(1)) {
+        Err(format!("axis {} is parallel to axis {}", j(4), j(1)))
+    } else if axes.parallel(a(4), a(5)) || axes.intersect(a(4), a(5)) {
+        Err(format!("axes {} and {} are parallel or meet", j(4), j(5)))
+    } else {
+        Ok(())
+    };
+    match c {
+        Ok(()) => Ok((Family::ThreeParallel, steps_three_parallel(j), false)),
+        Err(e) => {
+            why.push(format!("three parallel: {e}"));
+            Err(why.join("; "))
+        }
+    }
+}
+
 /// The order in which a 7-joint arm's joints are tried as the free one by default (0-based):
 /// the last and the first (locking either leaves the other six's geometry the same for every
 /// locked value), then joint 3 (an S-R-S arm's usual redundancy parameter), 4, 5, 2, 6.
@@ -438,7 +533,16 @@ fn seven(
             }
         },
         None => {
-            let Some(&k) = FREE_JOINT_ORDER.iter().find(|&&k| tried[k].1.is_ok()) else {
+            // A family of quadratics at any lock before a quartic one.
+            let fits = |k: usize, quartic: bool| {
+                tried[k]
+                    .1
+                    .as_ref()
+                    .is_ok_and(|m| m.family.quartic() == quartic)
+            };
+            let first =
+                |quartic: bool| FREE_JOINT_ORDER.iter().copied().find(|&k| fits(k, quartic));
+            let Some(k) = first(false).or_else(|| first(true)) else {
                 let why: Vec<String> = FREE_JOINT_ORDER
                     .iter()
                     .map(|&k| {
@@ -451,10 +555,24 @@ fn seven(
                     .collect();
                 return Err(why.join("; "));
             };
+            let quartic = tried[k].1.as_ref().is_ok_and(|m| m.family.quartic());
             let reason = match k {
                 6 => "the last joint only turns the tool, so the six others' geometry is the same for every value".to_string(),
-                0 => format!("the first joint only turns the base, so the six others' geometry is the same for every value (locking joint 7 leaves no family: {})", tried[6].1.as_ref().err().map_or("", |e| e)),
+                0 => format!(
+                    "the first joint only turns the base, so the six others' geometry is the same for every value (locking joint 7 leaves {})",
+                    match &tried[6].1 {
+                        Ok(_) => "only a quartic family".to_string(),
+                        Err(e) => format!("no family: {e}"),
+                    }
+                ),
                 _ => "the first of joints 3, 4, 5, 2, 6 whose locking leaves a family; joints 7 and 1, whose locking keeps the geometry the same for every value, leave none".to_string(),
+            };
+            let reason = if quartic {
+                format!(
+                    "{reason}; no joint's locking leaves a family of quadratics, so a quartic one"
+                )
+            } else {
+                reason
             };
             (
                 k,
@@ -659,6 +777,80 @@ fn steps_ur(j: impl Fn(usize) -> usize) -> Vec<String> {
         format!("q{} — SP3: ‖p23 + rot(h{}, q{}) p34‖ = ‖R1ᵀ p16 − p12 − rot(h{}, θ) p45‖ (two roots)", j(2), j(2), j(2), j(1)),
         format!("q{} — SP1; q{} from θ", j(1), j(3)),
         format!("q{} — SP1: rot(h{}, q{}) h{} = (R1 ⋯ R5)ᵀ R06 h{}", j(5), j(5), j(5), j(4), j(4)),
+    ]
+}
+
+fn steps_spherical(j: impl Fn(usize) -> usize, half_turn: bool) -> Vec<String> {
+    let mut s = vec![
+        format!(
+            "wrist centre w = p0T − R06 p6T (axes {}, {}, {} meet there); p16 = w − p1",
+            j(3),
+            j(4),
+            j(5)
+        ),
+        format!(
+            "(q{a}, q{c}) — SP6 on the two equations SP5 leaves: h{b}ᵀ rot(−h{a}, q{a}) p16 − h{b}ᵀ rot(h{c}, q{c}) p34 = h{b}ᵀ (p12 + p23) \
+             and p12ᵀ rot(−h{a}, q{a}) p16 + p23ᵀ rot(h{c}, q{c}) p34 = (‖p16‖² + ‖p12‖² − ‖p23‖² − ‖p34‖²) / 2 \
+             — a quartic in q{c} (or q{a}), up to four roots, each checked against fk",
+            a = j(0),
+            b = j(1),
+            c = j(2)
+        ),
+        format!(
+            "q{b} — SP1: rot(h{b}, q{b}) (p23 + R{c} p34) = rot(−h{a}, q{a}) p16 − p12",
+            a = j(0),
+            b = j(1),
+            c = j(2)
+        ),
+    ];
+    s.extend(wrist_steps(&j));
+    if half_turn {
+        s.push(format!(
+            "the other root of q{e}: q{d} + π and q{f} + π with it, no subproblem — h{d} ⟂ h{e} ⟂ h{f} (an orthogonal wrist, decided exactly)",
+            d = j(3),
+            e = j(4),
+            f = j(5)
+        ));
+    }
+    s
+}
+
+fn steps_three_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {
+    vec![
+        format!("p16 = p0T − R06 p6T − p1, with p6T from joint {}'s point", j(5)),
+        format!(
+            "(q{a}, q{e}) — SP6: h{b}ᵀ rot(−h{a}, q{a}) p16 − h{b}ᵀ rot(h{e}, q{e}) p56 = h{b}ᵀ (p12 + p23 + p34 + p45) \
+             and h{b}ᵀ rot(−h{a}, q{a}) R06 h{f} = h{b}ᵀ rot(h{e}, q{e}) h{f} (turns about h{b} ∥ h{c} ∥ h{d} keep both) \
+             — a quartic, up to four roots, each checked against fk",
+            a = j(0),
+            b = j(1),
+            c = j(2),
+            d = j(3),
+            e = j(4),
+            f = j(5)
+        ),
+        format!(
+            "q{f} — SP1: rot(h{f}, q{f}) R06ᵀ R1 h{b} = R{e}ᵀ h{b} (singular when R{e}ᵀ h{b} ∥ h{f}: q{f} is then free)",
+            b = j(1),
+            e = j(4),
+            f = j(5)
+        ),
+        format!(
+            "θ = q{} ± q{} ± q{} — SP1: rot(h{b}, θ) x = R1ᵀ R06 R{f}ᵀ R{e}ᵀ x for x ⟂ h{b}",
+            j(1),
+            j(2),
+            j(3),
+            b = j(1),
+            e = j(4),
+            f = j(5)
+        ),
+        format!(
+            "q{c} — SP3: ‖p23 + rot(h{c}, q{c}) p34‖ = ‖R1ᵀ p16 − p12 − rot(h{b}, θ) (p45 + R{e} p56)‖ (two roots)",
+            b = j(1),
+            c = j(2),
+            e = j(4)
+        ),
+        format!("q{} — SP1; q{} from θ", j(1), j(3)),
     ]
 }
 
