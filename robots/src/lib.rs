@@ -109,6 +109,17 @@ kinegen::kinematics! {
     pub struct CylindricalRpp = "cylindrical_rpp.toml";
 }
 
+kinegen::kinematics! {
+    /// A spherical-wrist arm whose first three axes are skew (an illustrative table):
+    /// closed-form IK through SP5, a quartic (`IK_STEPS`).
+    pub struct SkewShoulder = "skew_shoulder.toml";
+}
+kinegen::kinematics! {
+    /// A UR5e with a 5 cm offset between axes 5 and 6 (an illustrative table): closed-form
+    /// IK through SP6, a quartic (`IK_STEPS`).
+    pub struct Ur5eWristOffset = "ur5e_wrist_offset.toml";
+}
+
 /// Every robot table of this crate as `(name, file, TOML source)`, sorted by name: what
 /// `kinegen show ur5` reads, and what this crate's types are generated from.
 pub const TABLES: &[(&str, &str, &str)] = &[
@@ -165,6 +176,11 @@ pub const TABLES: &[(&str, &str, &str)] = &[
     ),
     ("scara", "robots/scara.toml", include_str!("../scara.toml")),
     (
+        "skew_shoulder",
+        "robots/skew_shoulder.toml",
+        include_str!("../skew_shoulder.toml"),
+    ),
+    (
         "stanford",
         "robots/stanford.toml",
         include_str!("../stanford.toml"),
@@ -179,6 +195,11 @@ pub const TABLES: &[(&str, &str, &str)] = &[
         include_str!("../ur5_urdf.toml"),
     ),
     ("ur5e", "robots/ur5e.toml", include_str!("../ur5e.toml")),
+    (
+        "ur5e_wrist_offset",
+        "robots/ur5e_wrist_offset.toml",
+        include_str!("../ur5e_wrist_offset.toml"),
+    ),
 ];
 
 /// Every URDF of `robots/urdf/` as `(path relative to robots/, file, XML source)`,
