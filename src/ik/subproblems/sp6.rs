@@ -18,7 +18,7 @@ use super::Fit;
 use crate::ik::geometry::{Angle, V3};
 
 /// Up to four solutions `(θ1, θ2)` of SP6, each with how it fits (see
-/// [`QuarticRoots`](super::quartic::QuarticRoots)).
+/// [`QuarticRoots`](super::QuarticRoots)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sp6Roots {
     /// The solutions; `pairs[..n]` are used.
