@@ -19,7 +19,7 @@
 
 use super::geometry::{flat, Geometry, Orbit, Pose, M3, V3};
 use super::lanes::{Lanes, Vectors};
-use super::setup::{wrist_centre, ThreeParallel};
+use super::setup::{ThreeParallel, WristArm};
 use super::solutions::{Candidates, NEAR_MISS};
 use super::subproblems::{
     roots_of, sp1_fit_lanes, wrap, Fit, Plane, RootLanes, Sp3Lanes, Sp4Lanes,
@@ -339,12 +339,14 @@ fn spherical_two_parallel_lanes(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
 ) -> Option<()> {
-    let (r06, w0, w) = wrist_centre(g, pose);
+    // 1. The wrist centre, from joint 1.
+    let WristArm {
+        r06,
+        links: [p12, p23, p34],
+        p16,
+    } = WristArm::new(g, pose);
     let [h1, h2, h3, h4, h5, h6] = g.h;
     let s3 = h3.dot(&h2).signum();
-    let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
-    // 1. The wrist centre, from joint 1.
-    let p16 = w - g.p[0];
     // 2. q1 — SP4: h2ᵀ rot(−h1, q1) p16 = h2ᵀ (p12 + p23 + p34).
     let (shoulder, t1, q1) = shoulder(&h1, &h2, &p16, h2.dot(&(p12 + p23 + p34)))?;
     // The shoulders' lanes, in the coordinates of the plane ⟂ h2.

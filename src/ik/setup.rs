@@ -62,3 +62,29 @@ pub fn wrist_centre(g: &Geometry<6>, pose: &Pose) -> (M3, V3, V3) {
     let (r06, w) = target_point(g, pose, &w0);
     (r06, w0, w)
 }
+
+/// A spherical wrist's arm (PUMA family, SP5 family): the target's rotation without the
+/// tool, the links from joint 1's point to the wrist centre at `q = 0`, and the wrist
+/// centre at the target seen from joint 1's point.
+#[derive(Clone, Copy, Debug)]
+pub struct WristArm {
+    /// `R06 = R0T r_toolᵀ`.
+    pub r06: M3,
+    /// `p12`, `p23`, and `p34` to the wrist centre.
+    pub links: [V3; 3],
+    /// `p16 = w − p1`, `w` the wrist centre at the target.
+    pub p16: V3,
+}
+
+impl WristArm {
+    /// The set-up of `g` for the target `pose`.
+    #[inline(always)]
+    pub fn new(g: &Geometry<6>, pose: &Pose) -> WristArm {
+        let (r06, w0, w) = wrist_centre(g, pose);
+        WristArm {
+            r06,
+            links: [g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]],
+            p16: w - g.p[0],
+        }
+    }
+}

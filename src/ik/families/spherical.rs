@@ -8,7 +8,7 @@ use super::wrist::{with_wrist, Wrist};
 use super::WristPair;
 use crate::ik::geometry::{Geometry, Pose};
 use crate::ik::polish::polished;
-use crate::ik::setup::wrist_centre;
+use crate::ik::setup::WristArm;
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp5, Fit};
 
@@ -28,10 +28,12 @@ pub fn spherical(
     out: &mut Candidates<6, 8>,
 ) {
     let wrist = Wrist::new(g, pair);
-    let (r06, w0, w) = wrist_centre(g, pose);
+    let WristArm {
+        r06,
+        links: [p12, p23, p34],
+        p16,
+    } = WristArm::new(g, pose);
     let [h1, h2, h3, ..] = g.h;
-    let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
-    let p16 = w - g.p[0];
     // rot(−h1, q1) = R1ᵀ: SP5's θ1 is q1.
     let arm = sp5(&(-p12), &(-h1), &p16, &h2, &p23, &h3, &p34, free[1]);
     for ([q1, q2, q3], fit) in arm.iter() {

@@ -7,7 +7,7 @@ use super::wrist::{with_wrist, Wrist};
 use super::{regular_first, Solvers, WristPair};
 use crate::ik::geometry::{flat, Angle, Geometry, Pose};
 use crate::ik::regular;
-use crate::ik::setup::wrist_centre;
+use crate::ik::setup::WristArm;
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1_planar_angle, sp4, Plane, Sp3};
 
@@ -45,10 +45,12 @@ pub fn spherical_two_parallel_by_branch(
     out: &mut Candidates<6, 8>,
 ) {
     let wrist = Wrist::new(g, pair);
-    let (r06, w0, w) = wrist_centre(g, pose);
+    let WristArm {
+        r06,
+        links: [p12, p23, p34],
+        p16,
+    } = WristArm::new(g, pose);
     let [h1, h2, h3, ..] = g.h;
-    let (p12, p23, p34) = (g.p[1] - g.p[0], g.p[2] - g.p[1], w0 - g.p[2]);
-    let p16 = w - g.p[0];
     let t1 = sp4(&h2, &p16, &(-h1), h2.dot(&(p12 + p23 + p34)), free[0]);
     // In the plane ⟂ h2 (the components along it agree by step 2): no axial offsets
     // in the distances, whose rounding would blur the elbow's double root.
