@@ -250,7 +250,14 @@ fn show_what_ik_lists_the_derivation() {
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "2"]);
     assert!(
         text.contains("no closed-form IK")
-            && text.contains("joints whose locking leaves a family: 6, 7"),
+            && text.contains("joints whose locking leaves a family: 4, 5, 6, 7"),
+        "{text}"
+    );
+    // The elbow locked: the six others, read from the tool, are a spherical wrist after
+    // three skew axes (SP5).
+    let text = stdout(&["show", "panda", "--what", "ik", "--free", "4"]);
+    assert!(
+        text.contains("spherical wrist, general arm (SP5), read from the tool (joint 4 locked)"),
         "{text}"
     );
 }

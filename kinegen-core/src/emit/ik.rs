@@ -173,7 +173,8 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
             "No other joint's locking leaves a closed-form family.".to_string()
         } else {
             format!(
-                "Locking joint {} would also leave a closed-form family (choose with `ik_free`).",
+                "Locking joint{} {} would also leave a closed-form family (choose with `ik_free`).",
+                if others.len() == 1 { "" } else { "s" },
                 others.join(", ")
             )
         };

@@ -313,26 +313,8 @@ fn six(
     labels: &[usize],
 ) -> Result<(Family, Vec<String>, bool), String> {
     let j = |i: usize| labels[i] + 1;
-    // Orthogonal wrist about `a` (the axis turning before h5): the half-turn pair.
-    let orthogonal = |a: usize| {
-        axes.perpendicular(labels[a], labels[4]) && axes.perpendicular(labels[4], labels[5])
-    };
-    let with_pair = |family: Family, mut steps: Vec<String>, a: usize| {
-        let half = orthogonal(a);
-        if half {
-            let angle = match family {
-                Family::ThreeParallelTwoIntersecting => "θ".to_string(),
-                _ => format!("q{}", j(a)),
-            };
-            steps.push(format!(
-                "the other root of q{e}: {angle} + π and q{f} + π with it, no subproblem — h{d} ⟂ h{e} ⟂ h{f} (an orthogonal wrist, decided exactly)",
-                d = j(a),
-                e = j(4),
-                f = j(5)
-            ));
-        }
-        (family, steps, half)
-    };
+    let with_pair =
+        |family: Family, steps: Vec<String>, a: usize| with_pair(axes, labels, family, steps, a);
     let all_revolute = labels.iter().all(|&i| kinds[i] == JointKind::Revolute);
     let mut why = Vec::new();
     // Three parallel, two intersecting.
@@ -408,6 +390,32 @@ fn six(
     Err(why.join("; "))
 }
 
+/// `family` with its steps and whether its wrist is orthogonal about `a` (the axis
+/// turning before h5: `a ⟂ h5 ⟂ h6`, decided exactly), the half-turn step added if so.
+fn with_pair(
+    axes: &Axes,
+    labels: &[usize],
+    family: Family,
+    mut steps: Vec<String>,
+    a: usize,
+) -> (Family, Vec<String>, bool) {
+    let j = |i: usize| labels[i] + 1;
+    let half = axes.perpendicular(labels[a], labels[4]) && axes.perpendicular(labels[4], labels[5]);
+    if half {
+        let angle = match family {
+            Family::ThreeParallelTwoIntersecting => "θ".to_string(),
+            _ => format!("q{}", j(a)),
+        };
+        steps.push(format!(
+            "the other root of q{e}: {angle} + π and q{f} + π with it, no subproblem — h{d} ⟂ h{e} ⟂ h{f} (an orthogonal wrist, decided exactly)",
+            d = j(a),
+            e = j(4),
+            f = j(5)
+        ));
+    }
+    (family, steps, half)
+}
+
 /// The 6-joint families whose first step is a quartic, for axes `labels` of `axes`: tried
 /// where no family of quadratics ([`six`]) fits either way.
 fn six_quartic(
@@ -438,8 +446,13 @@ fn six_quartic(
             j(0), j(1), j(1), j(2), j(0), j(2)
         ));
     } else {
-        let half = axes.perpendicular(a(3), a(4)) && axes.perpendicular(a(4), a(5));
-        return Ok((Family::Spherical, steps_spherical(j, half), half));
+        return Ok(with_pair(
+            axes,
+            labels,
+            Family::Spherical,
+            steps_spherical(j),
+            3,
+        ));
     }
     // SP6 on the components along h2: its matrix in q5 is singular when h5 ∥ h2, h5 ∥ h6
     // or h5 ∩ h6 (the UR family), its matrix in q1 when h1 ∥ h2.
@@ -504,13 +517,36 @@ fn seven(
         let v: Vec<String> = ks.iter().map(|k| (k + 1).to_string()).collect();
         v.join(", ")
     };
+    let quartic = |i: usize| tried[i].1.as_ref().is_ok_and(|m| m.family.quartic());
     let others = |k: usize| {
-        let rest: Vec<usize> = lockable.iter().copied().filter(|&i| i != k).collect();
-        if rest.is_empty() {
+        let rest = |q: bool| -> Vec<usize> {
+            lockable
+                .iter()
+                .copied()
+                .filter(|&i| i != k && quartic(i) == q)
+                .collect()
+        };
+        let joints = |v: &[usize]| if v.len() == 1 { "joint" } else { "joints" };
+        let (quadratic, quartics) = (rest(false), rest(true));
+        let mut parts = Vec::new();
+        if !quadratic.is_empty() {
+            parts.push(format!(
+                "{} {} would also do",
+                joints(&quadratic),
+                list(&quadratic)
+            ));
+        }
+        if !quartics.is_empty() {
+            parts.push(format!(
+                "{} {} with a quartic family",
+                joints(&quartics),
+                list(&quartics)
+            ));
+        }
+        if parts.is_empty() {
             String::new()
         } else {
-            let joints = if rest.len() == 1 { "joint" } else { "joints" };
-            format!("; {joints} {} would also do (`ik_free`)", list(&rest))
+            format!("; {} (`ik_free`)", parts.join(", "))
         }
     };
     let chosen = match free {
@@ -780,14 +816,9 @@ fn steps_ur(j: impl Fn(usize) -> usize) -> Vec<String> {
     ]
 }
 
-fn steps_spherical(j: impl Fn(usize) -> usize, half_turn: bool) -> Vec<String> {
+fn steps_spherical(j: impl Fn(usize) -> usize) -> Vec<String> {
     let mut s = vec![
-        format!(
-            "wrist centre w = p0T − R06 p6T (axes {}, {}, {} meet there); p16 = w − p1",
-            j(3),
-            j(4),
-            j(5)
-        ),
+        wrist_centre_step(&j),
         format!(
             "(q{a}, q{c}) — SP6 on the two equations SP5 leaves: h{b}ᵀ rot(−h{a}, q{a}) p16 − h{b}ᵀ rot(h{c}, q{c}) p34 = h{b}ᵀ (p12 + p23) \
              and p12ᵀ rot(−h{a}, q{a}) p16 + p23ᵀ rot(h{c}, q{c}) p34 = (‖p16‖² + ‖p12‖² − ‖p23‖² − ‖p34‖²) / 2 \
@@ -796,23 +827,30 @@ fn steps_spherical(j: impl Fn(usize) -> usize, half_turn: bool) -> Vec<String> {
             b = j(1),
             c = j(2)
         ),
-        format!(
-            "q{b} — SP1: rot(h{b}, q{b}) (p23 + R{c} p34) = rot(−h{a}, q{a}) p16 − p12",
-            a = j(0),
-            b = j(1),
-            c = j(2)
-        ),
+        shoulder_sp1_step(&j),
     ];
     s.extend(wrist_steps(&j));
-    if half_turn {
-        s.push(format!(
-            "the other root of q{e}: q{d} + π and q{f} + π with it, no subproblem — h{d} ⟂ h{e} ⟂ h{f} (an orthogonal wrist, decided exactly)",
-            d = j(3),
-            e = j(4),
-            f = j(5)
-        ));
-    }
     s
+}
+
+/// The wrist centre and its offset from joint 1's point.
+fn wrist_centre_step(j: &impl Fn(usize) -> usize) -> String {
+    format!(
+        "wrist centre w = p0T − R06 p6T (axes {}, {}, {} meet there); p16 = w − p1",
+        j(3),
+        j(4),
+        j(5)
+    )
+}
+
+/// q2 turning the arm onto the wrist centre, q1 and q3 known.
+fn shoulder_sp1_step(j: &impl Fn(usize) -> usize) -> String {
+    format!(
+        "q{b} — SP1: rot(h{b}, q{b}) (p23 + R{c} p34) = rot(−h{a}, q{a}) p16 − p12",
+        a = j(0),
+        b = j(1),
+        c = j(2)
+    )
 }
 
 fn steps_three_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {
@@ -856,12 +894,7 @@ fn steps_three_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {
 
 fn steps_spherical_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {
     let mut s = vec![
-        format!(
-            "wrist centre w = p0T − R06 p6T (axes {}, {}, {} meet there); p16 = w − p1",
-            j(3),
-            j(4),
-            j(5)
-        ),
+        wrist_centre_step(&j),
         format!(
             "q{a} — SP4: h{b}ᵀ rot(−h{a}, q{a}) p16 = h{b}ᵀ (p12 + p23 + p34) (two roots)",
             a = j(0),
@@ -872,12 +905,7 @@ fn steps_spherical_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {
             a = j(0),
             c = j(2)
         ),
-        format!(
-            "q{b} — SP1: rot(h{b}, q{b}) (p23 + R{c} p34) = rot(−h{a}, q{a}) p16 − p12",
-            a = j(0),
-            b = j(1),
-            c = j(2)
-        ),
+        shoulder_sp1_step(&j),
     ];
     s.extend(wrist_steps(&j));
     s
