@@ -335,40 +335,38 @@ const COEFFICIENT_ERROR: f64 = 1e-13;
 const ROOT_ERROR: f64 = 1e-9;
 
 /// The root of the monic quartic's derivative near `t` (a double root of the quartic, which
-/// is a simple root of the derivative), by Newton steps kept while they shrink `|f'|`.
-fn critical_point(mut t: f64, [a, b, c, _]: [f64; 4]) -> f64 {
-    let df = |t: f64| ((4.0 * t + 3.0 * a) * t + 2.0 * b) * t + c;
-    let mut ft = df(t);
-    for _ in 0..3 {
-        let ddf = (12.0 * t + 6.0 * a) * t + 2.0 * b;
-        if ddf == 0.0 || ft == 0.0 {
-            break;
-        }
-        let next = t - ft / ddf;
-        let fn_ = df(next);
-        if fn_.is_nan() || fn_.abs() >= ft.abs() {
-            break;
-        }
-        (t, ft) = (next, fn_);
-    }
-    t
+/// is a simple root of the derivative).
+fn critical_point(t: f64, [a, b, c, _]: [f64; 4]) -> f64 {
+    descend(
+        t,
+        |t| ((4.0 * t + 3.0 * a) * t + 2.0 * b) * t + c,
+        |t| (12.0 * t + 6.0 * a) * t + 2.0 * b,
+    )
 }
 
-/// Newton steps on the monic quartic from `t`, kept only while they shrink `|f|`.
-fn newton(mut t: f64, [a, b, c, d]: [f64; 4]) -> f64 {
-    let f = |t: f64| (((t + a) * t + b) * t + c) * t + d;
+/// A root of the monic quartic near `t`.
+fn newton(t: f64, [a, b, c, d]: [f64; 4]) -> f64 {
+    descend(
+        t,
+        |t| (((t + a) * t + b) * t + c) * t + d,
+        |t| ((4.0 * t + 3.0 * a) * t + 2.0 * b) * t + c,
+    )
+}
+
+/// Up to three Newton steps on `f` from `t`, each kept only where it shrinks `|f|`.
+fn descend(mut t: f64, f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64) -> f64 {
     let mut ft = f(t);
     for _ in 0..3 {
-        let df = ((4.0 * t + 3.0 * a) * t + 2.0 * b) * t + c;
-        if df == 0.0 || ft == 0.0 {
+        let slope = df(t);
+        if slope == 0.0 || ft == 0.0 {
             break;
         }
-        let next = t - ft / df;
-        let fn_ = f(next);
-        if fn_.is_nan() || fn_.abs() >= ft.abs() {
+        let next = t - ft / slope;
+        let f_next = f(next);
+        if f_next.is_nan() || f_next.abs() >= ft.abs() {
             break;
         }
-        (t, ft) = (next, fn_);
+        (t, ft) = (next, f_next);
     }
     t
 }
