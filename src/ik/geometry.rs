@@ -210,6 +210,13 @@ impl<const N: usize> Geometry<N> {
     /// The tool pose at joint values `q` (for tests and checks; the generated `fk` is the
     /// fast one).
     pub fn fk(&self, q: &[f64; N]) -> Pose {
+        self.frames(q).0
+    }
+
+    /// The tool pose at `q`, with each joint's axis and point in the world frame (the
+    /// columns of the geometric Jacobian come from them).
+    pub fn frames(&self, q: &[f64; N]) -> (Pose, [V3; N], [V3; N]) {
+        let (mut axes, mut points) = ([V3::zeros(); N], [V3::zeros(); N]);
         let mut r = M3::identity();
         let mut p = self.p[0];
         for (i, &qi) in q.iter().enumerate() {
@@ -218,17 +225,19 @@ impl<const N: usize> Geometry<N> {
             } else {
                 self.p_tool
             };
+            (axes[i], points[i]) = (r * self.h[i], p);
             if self.prismatic[i] {
-                p += r * self.h[i] * qi;
+                p += axes[i] * qi;
             } else {
                 r *= rot(&self.h[i], qi);
             }
             p += r * (next - self.p[i]);
         }
-        Pose {
+        let pose = Pose {
             r: r * self.r_tool,
             p,
-        }
+        };
+        (pose, axes, points)
     }
 
     /// The same arm read from the tool to the base: joint `i` of the result is joint

@@ -5,8 +5,9 @@
 //! Gauss–Newton steps on `fk` itself (damped: at a singular pose the Jacobian is singular
 //! too); the best iterate is kept, and `finish` checks it like any other.
 
-use super::geometry::{rot, Geometry, Pose, V3};
+use super::geometry::{Geometry, Pose, V3};
 use super::subproblems::Fit;
+use crate::pose_error::pose_error;
 use nalgebra::{Matrix6, Vector6};
 
 /// Gauss–Newton rounds. At a singular solution convergence is linear (about halving the
@@ -42,36 +43,17 @@ pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
     best
 }
 
-/// The pose error `(position, rotation vector)` in the world frame, and the geometric
-/// Jacobian, at `q`.
+/// The pose error `[p − p(q); log(R R(q)ᵀ)]` and the world-frame geometric Jacobian at
+/// `q`.
 fn error_and_jacobian(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> (Vector6<f64>, Matrix6<f64>) {
-    let mut axes = [V3::zeros(); 6];
-    let mut points = [V3::zeros(); 6];
-    let mut r = nalgebra::Matrix3::identity();
-    let mut p = g.p[0];
-    for i in 0..6 {
-        let next = if i + 1 < 6 { g.p[i + 1] } else { g.p_tool };
-        axes[i] = r * g.h[i];
-        points[i] = p;
-        if g.prismatic[i] {
-            p += axes[i] * q[i];
-        } else {
-            r *= rot(&g.h[i], q[i]);
-        }
-        p += r * (next - g.p[i]);
-    }
-    let r_end = r * g.r_tool;
-    // R_target R_endᵀ ≈ I + [ω]× for a small rotation error ω.
-    let d = pose.r * r_end.transpose();
-    let w = 0.5 * V3::new(d.m32 - d.m23, d.m13 - d.m31, d.m21 - d.m12);
-    let dp = pose.p - p;
-    let e = Vector6::new(dp.x, dp.y, dp.z, w.x, w.y, w.z);
+    let (at, axes, points) = g.frames(q);
+    let e = pose_error(&pose.p, &pose.r, &at.p, &at.r);
     let mut j = Matrix6::zeros();
     for i in 0..6 {
         let (lin, ang) = if g.prismatic[i] {
             (axes[i], V3::zeros())
         } else {
-            (axes[i].cross(&(p - points[i])), axes[i])
+            (axes[i].cross(&(at.p - points[i])), axes[i])
         };
         for k in 0..3 {
             j[(k, i)] = lin[k];
