@@ -185,6 +185,21 @@ macro_rules! self_test {
         );
     };
     ($test:ident, $ty:ty, $seed:expr, $gap:expr) => {
+        self_test!(
+            $test,
+            $ty,
+            $seed,
+            $gap,
+            |robot: &$ty, q| robot
+                .singular_factors(q)
+                .iter()
+                .any(|f: &f64| f.abs() <= SINGULAR),
+            true
+        );
+    };
+    // `$singular(robot, q)`: the generating configuration is singular; `$named`: the
+    // robot has singular factors its singular branches must name.
+    ($test:ident, $ty:ty, $seed:expr, $gap:expr, $singular:expr, $named:expr) => {
         #[test]
         fn $test() {
             let robot = <$ty>::default();
@@ -193,10 +208,7 @@ macro_rules! self_test {
             for _ in 0..CASES {
                 let q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
                 let pose = robot.fk(&q);
-                let singular = robot
-                    .singular_factors(&q)
-                    .iter()
-                    .any(|f| f.abs() <= SINGULAR);
+                let singular = $singular(&robot, &q);
                 let sols = robot.ik(&pose);
                 let near = robot.ik_near(&pose, &q);
                 check(
@@ -206,7 +218,7 @@ macro_rules! self_test {
                     &sols,
                     near,
                     singular,
-                    true,
+                    $named,
                     &<$ty>::REVOLUTE,
                     |x| robot.fk(x),
                     $gap,
@@ -297,6 +309,21 @@ self_test!(planar_rr, PlanarRr, 22, task);
 self_test!(planar_rrr, PlanarRrr, 333, task);
 self_test!(scara, Scara, 600, task);
 self_test!(cylindrical_rpp, CylindricalRpp, 303, task);
+// A 5-joint arm has no determinant and no singular factors: its 6 × 5 Jacobian's
+// smallest singular value, relative to the largest, decides.
+self_test!(
+    widowx250,
+    WidowX250,
+    250,
+    pose_error,
+    |robot: &WidowX250, q| {
+        let jq = robot.jacobian(q);
+        let j = nalgebra::SMatrix::<f64, 6, 5>::from_fn(|r, c| jq[r][c]);
+        let s = j.singular_values();
+        s.min() <= SINGULAR * s.max()
+    },
+    false
+);
 
 /// A 7-joint arm's self-test with its free joint (`IK_FREE`) locked at the generating
 /// value: the six others in closed form. `snap_free`: the free joint is also snapped to

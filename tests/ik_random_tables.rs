@@ -323,6 +323,35 @@ fn quartic_like(
     table(&rows, rng, true, None, convention)
 }
 
+/// The arm with a pitching wrist (`"pitch_roll"`): axis 1, then h2 ∥ h3 ∥ h4 (in either
+/// sense, with offsets along them), and with `n = 5` a roll axis h5 at a quarter or a
+/// sixth of a turn from h4 carrying the tool point (the tool frame only slides along it and
+/// turns); with `n = 4` any tool frame.
+fn pitch_roll_like(rng: &mut XorShift64, n: usize, convention: Convention) -> String {
+    let r = |a: f64, alpha: &str, d: f64| -> Row { ("revolute", a, alpha.to_string(), d) };
+    let mut rows: Vec<Row> = vec![
+        r(len(rng), twist(rng), len(rng)),
+        r(len(rng), parallel_twist(rng), len(rng)),
+        r(len(rng), parallel_twist(rng), len(rng)),
+    ];
+    if n == 4 {
+        rows.push(r(len(rng), skew_twist(rng), len(rng)));
+        return table(&rows, rng, true, None, convention);
+    }
+    rows.push(r(len(rng), skew_twist(rng), len(rng)));
+    // a5 = 0: frame 5's origin stays on axis 5 (standard DH; in Craig's it is there anyway).
+    rows.push(r(0.0, parallel_twist(rng), len(rng)));
+    let base = frame(rng, "base");
+    let tool = format!(
+        "tool = {{ xyz = [0, 0, {:.3}], rpy = [{:.3}, {:.3}, {:.3}] }}\n",
+        len(rng),
+        rng.next_f64() * 2.0 - 1.0,
+        rng.next_f64() * 2.0 - 1.0,
+        rng.next_f64() * 2.0 - 1.0
+    );
+    format!("{base}{tool}{}", table(&rows, rng, false, None, convention))
+}
+
 /// What the engine gives the CLI for a chain: the plan and the geometry as numbers.
 fn plan(chain: &Chain) -> (Family, DynPlan, DynGeometry, Option<usize>) {
     let ik =
@@ -444,7 +473,12 @@ fn self_test_counting(
         let rows: Vec<usize> = task.map_or((0..6).collect(), <[usize]>::to_vec);
         let square = nalgebra::DMatrix::from_fn(rows.len(), n, |r, c| jac[(rows[r], c)]);
         let scale = square.iter().map(|x| x.abs()).fold(1e-300, f64::max);
-        let det = square.determinant();
+        // A 4- or 5-joint arm's 6 × n Jacobian: the product of its singular values.
+        let det = if rows.len() == n {
+            square.determinant()
+        } else {
+            square.svd(false, false).singular_values.iter().product()
+        };
         let singular = det.abs() <= 1e-12 * scale.powi(n as i32);
         let checks = Checks {
             residual: &|x| error(x),
@@ -751,3 +785,26 @@ quartic_test!(
     Convention::Modified,
     1
 );
+
+/// The pitch-and-roll arm (4 and 5 joints) in both conventions: poses made by its own
+/// `fk` are in the set it reaches, so the self-test applies unchanged (the 6 × n
+/// Jacobian's singular values decide singular configurations).
+macro_rules! pitch_roll_test {
+    ($test:ident, $seed:expr, $n:expr, $convention:expr) => {
+        #[test]
+        fn $test() {
+            let mut rng = XorShift64::new($seed);
+            for k in 0..TABLES {
+                let src = pitch_roll_like(&mut rng, $n, $convention);
+                let (robot, _) = load_str(&src, &format!("table{k}.toml")).unwrap();
+                assert_eq!(robot.chain().dof(), $n);
+                self_test(&robot, "pitch_roll", &mut rng, None, true);
+            }
+        }
+    };
+}
+
+pitch_roll_test!(pitch_tables, 91, 4, Convention::Standard);
+pitch_roll_test!(pitch_modified_tables, 92, 4, Convention::Modified);
+pitch_roll_test!(pitch_roll_tables, 93, 5, Convention::Standard);
+pitch_roll_test!(pitch_roll_modified_tables, 94, 5, Convention::Modified);

@@ -101,11 +101,8 @@ kinegen::kinematics! {
     pub struct PandaUrdf = "panda_urdf.toml";
 }
 kinegen::kinematics! {
-    /// Cylindrical RPP arm.
-    ///
-    /// No closed-form IK family (its third axis is horizontal): the numerical solvers of
-    /// `kinegen::ik` serve it.
-    #[allow(deprecated)]
+    /// Cylindrical RPP arm, task `[x, y, z]`: closed-form position IK (the cylindrical
+    /// case: q1 by SP4, the slides from a 2 × 2 linear system; `IK_STEPS`).
     pub struct CylindricalRpp = "cylindrical_rpp.toml";
 }
 
@@ -118,6 +115,13 @@ kinegen::kinematics! {
     /// A UR5e with a 5 cm offset between axes 5 and 6 (an illustrative table): closed-form
     /// IK through SP6, a quartic (`IK_STEPS`).
     pub struct Ur5eWristOffset = "ur5e_wrist_offset.toml";
+}
+kinegen::kinematics! {
+    /// Interbotix WidowX 250, 5 joints, from its URDF (`urdf/wx250.urdf`): closed-form IK
+    /// for the poses it reaches — the tool point, the approach in the arm's plane and the
+    /// roll (`IK_STEPS`); a pose off that set gets its position and the nearest approach,
+    /// flagged inexact.
+    pub struct WidowX250 = "widowx250.toml";
 }
 
 /// Every robot table of this crate as `(name, file, TOML source)`, sorted by name: what
@@ -200,6 +204,11 @@ pub const TABLES: &[(&str, &str, &str)] = &[
         "robots/ur5e_wrist_offset.toml",
         include_str!("../ur5e_wrist_offset.toml"),
     ),
+    (
+        "widowx250",
+        "robots/widowx250.toml",
+        include_str!("../widowx250.toml"),
+    ),
 ];
 
 /// Every URDF of `robots/urdf/` as `(path relative to robots/, file, XML source)`,
@@ -239,5 +248,10 @@ pub const URDFS: &[(&str, &str, &str)] = &[
         "urdf/ur5.urdf",
         "robots/urdf/ur5.urdf",
         include_str!("../urdf/ur5.urdf"),
+    ),
+    (
+        "urdf/wx250.urdf",
+        "robots/urdf/wx250.urdf",
+        include_str!("../urdf/wx250.urdf"),
     ),
 ];

@@ -29,7 +29,8 @@ pub struct DynGeometry {
 /// Which solver, and its arguments.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DynPlan {
-    /// The function of [`families`] (`"three_parallel_two_intersecting"`, …, `"position_…"`).
+    /// The function of [`families`] (`"three_parallel_two_intersecting"`, …, `"position_…"`,
+    /// `"pitch_roll"`).
     pub solver: String,
     /// For `planar`: the revolute joints (0-based).
     pub revolute: Vec<usize>,
@@ -169,6 +170,14 @@ fn planar<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
     finished(&c, pr, checks)
 }
 
+fn pitch_roll<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
+    let g = geometry::<N>(pr.geometry);
+    let free: [f64; N] = core::array::from_fn(|i| pr.free[i]);
+    let mut c = Candidates::<N, 4>::default();
+    families::pitch_roll(&g, &Pose::from_matrix(&pr.pose), &free, &mut c);
+    finished(&c, pr, checks)
+}
+
 /// Every solution of `pr.pose`; `Err` for a solver or joint count no family has.
 pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'static str> {
     let n = pr.geometry.h.len();
@@ -200,6 +209,13 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
             _ => return Err("unknown solver"),
         }
         return Ok(finished(&c, pr, checks));
+    }
+    if pr.plan.solver == "pitch_roll" {
+        return match n {
+            4 => Ok(pitch_roll::<4>(pr, checks)),
+            5 => Ok(pitch_roll::<5>(pr, checks)),
+            _ => Err("the pitch-and-roll arm has 4 or 5 joints"),
+        };
     }
     if pr.plan.solver == "planar" {
         return match n {

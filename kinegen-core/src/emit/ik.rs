@@ -335,7 +335,9 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             Family::Position(Position::OneRevolute { revolute_first }) => {
                 format!("&{g_}, {target}, {revolute_first}, {free_}")
             }
-            Family::Position(_) => format!("&{g_}, {target}, {free_}"),
+            Family::Position(_) | Family::PitchRoll { .. } => {
+                format!("&{g_}, {target}, {free_}")
+            }
             _ => {
                 let pair = if model.plan.wrist_half_turn {
                     "HalfTurn"

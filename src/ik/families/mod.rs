@@ -18,6 +18,8 @@
 //! prismatic: [`spherical_two_intersecting()`], [`spherical_two_intersecting_prismatic`]),
 //! `planar.rs` (every axis along world z: [`planar()`]), `position.rs` (three joints
 //! placing the tool point: [`position_intersecting`] and the other position cases),
+//! `pitch_roll.rs` (four or five joints, h2 ∥ h3 ∥ h4: position, the approach in the
+//! arm's plane and a roll — [`pitch_roll()`]),
 //! and the two whose first step is a quartic, every branch checked against `fk`:
 //! `spherical.rs` (spherical wrist after three axes in no special position, SP5:
 //! [`spherical()`]) and `three_parallel.rs` (h2 ∥ h3 ∥ h4 with h5, h6 not meeting, SP6:
@@ -27,6 +29,7 @@
 use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
 
+mod pitch_roll;
 mod planar;
 mod position;
 mod spherical;
@@ -37,6 +40,7 @@ mod three_parallel;
 mod ur;
 mod wrist;
 
+pub use pitch_roll::pitch_roll;
 pub use planar::planar;
 pub use position::{
     position_cartesian, position_intersecting, position_intersecting_prismatic,

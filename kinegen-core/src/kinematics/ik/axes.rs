@@ -20,6 +20,8 @@ pub struct Axes {
     pub h: Vec<PVec>,
     /// A point `p_i` on each axis.
     pub p: Vec<PVec>,
+    /// The tool point.
+    pub tool: PVec,
     ring: Ring,
 }
 
@@ -44,6 +46,7 @@ impl Axes {
         Some(Axes {
             h,
             p,
+            tool: nf(&sym.tool.p)?,
             ring: g.ring.clone(),
         })
     }
@@ -104,6 +107,11 @@ impl Axes {
         !self
             .dot(&self.h[i], &self.cross(&self.h[j], &self.h[k]))
             .is_zero()
+    }
+
+    /// The tool point lies on axis `i` (turning joint `i` leaves it where it is).
+    pub fn tool_on(&self, i: usize) -> bool {
+        is_zero(&self.cross(&sub(&self.tool, &self.p[i]), &self.h[i]))
     }
 
     /// Axes `i` and `j` lie in one plane (they meet or are parallel).

@@ -11,6 +11,7 @@
 //! | spherical wrist, two intersecting, prismatic 3 | as above, joint 3 prismatic | Stanford arm |
 //! | planar | every axis along world z; task rows x, y (+ rz, + z) | planar 2R/3R, SCARA |
 //! | position | three joints, task rows x, y, z: R R R with h1 ∩ h2 or h2 ∥ h3, R R P with h1 ∩ h2, R P P, P P R, P P P | elbow, spherical, cylindrical, Cartesian arms |
+//! | pitch and roll | four or five revolute joints, h2 ∥ h3 ∥ h4, h1 ∦ h2; with five, h5 ∦ h2 and the tool point on axis 5: position first, the approach in the arm's plane, the roll | OpenManipulator-X (4), WidowX 250, youBot (5) |
 //!
 //! and, where none of those fits either way, the families whose first step is a quartic
 //! (SP5, SP6 — every branch checked against `fk`):
@@ -64,6 +65,13 @@ pub enum Family {
     },
     /// Three joints placing the tool point (task rows x, y, z).
     Position(Position),
+    /// Four or five revolute joints, h2 ∥ h3 ∥ h4 after h1 (h1 ∦ h2); with five, the tool
+    /// point on axis 5 (h5 ∦ h2): the position, the approach in the arm's plane and the
+    /// roll (`kinegen::ik::families::pitch_roll`).
+    PitchRoll {
+        /// Five joints (a roll at the tool), else four.
+        roll: bool,
+    },
     /// Spherical wrist, the first three axes in no special position: SP5 (a quartic).
     Spherical,
     /// h2 ∥ h3 ∥ h4, h5 and h6 not meeting: SP6 (a quartic).
@@ -131,6 +139,7 @@ impl Family {
             Family::Position(Position::IntersectingPrismatic) => "position_intersecting_prismatic",
             Family::Position(Position::OneRevolute { .. }) => "position_one_revolute",
             Family::Position(Position::Cartesian) => "position_cartesian",
+            Family::PitchRoll { .. } => "pitch_roll",
             Family::Spherical => "spherical",
             Family::ThreeParallel => "three_parallel",
         }
@@ -163,6 +172,10 @@ impl Family {
                 revolute_first: false,
             }) => "position, P P R",
             Family::Position(Position::Cartesian) => "position, Cartesian (P P P)",
+            Family::PitchRoll { roll: false } => "position and pitch, h2 ∥ h3 ∥ h4 (4 joints)",
+            Family::PitchRoll { roll: true } => {
+                "position, pitch and roll, h2 ∥ h3 ∥ h4, tool on axis 5 (5 joints)"
+            }
             Family::Spherical => "spherical wrist, general arm (SP5)",
             Family::ThreeParallel => "three parallel (SP6)",
         }
@@ -174,15 +187,15 @@ impl Family {
             Family::Planar { .. } => 2,
             Family::Position(Position::OneRevolute { .. }) => 2,
             Family::Position(Position::Cartesian) => 1,
-            Family::Position(_) => 4,
+            Family::Position(_) | Family::PitchRoll { .. } => 4,
             _ => 8,
         }
     }
 }
 
 /// Why a chain gets no closed form without anything being wrong with it: no family is
-/// defined for its number of joints (only 6-joint arms, 7-joint arms with a locked joint,
-/// and arms with task rows are tried). No note is given for it.
+/// defined for its number of joints (only 4- to 6-joint arms, 7-joint arms with a locked
+/// joint, and arms with task rows are tried). No note is given for it.
 pub const OUT_OF_DOMAIN: &str = "no family is defined for this number of joints";
 
 /// The plan for `chain`, or why there is none (each family's first broken condition,
@@ -217,6 +230,7 @@ pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPl
             let labels: Vec<usize> = (0..6).collect();
             either_way(&axes, &kinds, &labels).map(|m| finish(m, None, Vec::new(), None))
         }
+        4 | 5 => pitch_roll(chain, max_terms, &kinds),
         7 => seven(chain, max_terms, &kinds, free),
         _ => Err(OUT_OF_DOMAIN.into()),
     }
@@ -797,6 +811,65 @@ fn position(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPl
     };
     let m = Match {
         family: Family::Position(case),
+        steps,
+        half_turn: false,
+        reversed: false,
+    };
+    Ok(finish(m, None, Vec::new(), None))
+}
+
+/// Four or five revolute joints, the whole pose: [`Family::PitchRoll`], decided exactly at
+/// `q = 0`.
+fn pitch_roll(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan, String> {
+    let n = chain.dof();
+    let sym = SymbolicChain::at_zero(chain, max_terms, None);
+    let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
+    let roll = n == 5;
+    let fails = [
+        (
+            kinds.iter().any(|k| *k != JointKind::Revolute),
+            "a joint is prismatic".to_string(),
+        ),
+        (
+            !(axes.parallel(1, 2) && axes.parallel(2, 3)),
+            "axes 2, 3, 4 are not parallel".into(),
+        ),
+        (axes.parallel(0, 1), "axis 1 is parallel to axis 2".into()),
+        (
+            roll && axes.parallel(4, 1),
+            "axis 5 is parallel to axes 2–4 (the roll would add to the pitch)".into(),
+        ),
+        (
+            roll && !axes.tool_on(4),
+            "the tool point is off axis 5 (the roll would move it)".into(),
+        ),
+    ];
+    if let Some((_, why)) = fails.iter().find(|(fail, _)| *fail) {
+        return Err(format!("pitch and roll ({n} joints): {why}"));
+    }
+    let v = if roll { "h5" } else { "v = h2 × h1" };
+    let mut steps = vec![
+        format!(
+            "q1 — SP4: h2ᵀ rot(−h1, q1) (p − p1) = h2ᵀ (pT − p1) (two roots: the arm's plane; \
+             joints 2–{n} keep the tool point's component along h2); with the tool point on axis 1, \
+             (q1, θ) — SP2 from the approach: rot(−h1, q1) R {v} = rot(h2, θ) {v}"
+        ),
+        format!(
+            "θ = q2 ± q3 ± q4 — SP1: rot(h2, θ) {v} = rot(−h1, q1) R {v}, R = R0T RTᵀ (the approach; \
+             least squares where it leaves the arm's plane: the position comes first)"
+        ),
+    ];
+    if roll {
+        steps.push(
+            "q5 — SP1: rot(h5, q5) x = rot(h2, −θ) rot(−h1, q1) R x, x = h5 × h2 (the roll)".into(),
+        );
+    }
+    steps.extend([
+        "q3 — SP3: ‖p23 + rot(h3, q3) p34‖ = ‖w‖, w = rot(−h1, q1) (p − p1) − p12 − rot(h2, θ) (pT − p4) (two roots)".to_string(),
+        "q2 — SP1: rot(h2, q2) (p23 + R3 p34) = w; q4 = ±(θ − q2 ∓ q3)".into(),
+    ]);
+    let m = Match {
+        family: Family::PitchRoll { roll },
         steps,
         half_turn: false,
         reversed: false,
