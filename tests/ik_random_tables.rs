@@ -808,3 +808,38 @@ pitch_roll_test!(pitch_tables, 91, 4, Convention::Standard);
 pitch_roll_test!(pitch_modified_tables, 92, 4, Convention::Modified);
 pitch_roll_test!(pitch_roll_tables, 93, 5, Convention::Standard);
 pitch_roll_test!(pitch_roll_modified_tables, 94, 5, Convention::Modified);
+
+/// What keeps a 4- or 5-joint arm out of the pitch-and-roll family, said exactly.
+#[test]
+fn pitch_roll_exclusions() {
+    let mut rng = XorShift64::new(95);
+    let why = |src: &str| -> String {
+        let (robot, _) = load_str(src, "t.toml").unwrap();
+        kinegen_core::kinematics::ik::model(
+            &robot.chain(),
+            Options::default().budget.max_terms(),
+            None,
+        )
+        .err()
+        .unwrap_or_else(|| panic!("a family fits\n{src}"))
+    };
+    // The tool point 5 cm off axis 5: the roll would move it.
+    let src = pitch_roll_like(&mut rng, 5, Convention::Standard);
+    let off = src.replacen("xyz = [0, 0,", "xyz = [0.05, 0,", 1);
+    assert!(off != src);
+    assert!(
+        why(&off).contains("the tool point is off axis 5"),
+        "{}",
+        why(&off)
+    );
+    // Axes 3 and 4 not parallel.
+    let src = pitch_roll_like(&mut rng, 4, Convention::Standard);
+    let i = src.match_indices("alpha = ").nth(2).unwrap().0;
+    let end = i + src[i..].find('\n').unwrap();
+    let skew = format!("{}alpha = \"pi/2\"{}", &src[..i], &src[end..]);
+    assert!(
+        why(&skew).contains("axes 2, 3, 4 are not parallel"),
+        "{}",
+        why(&skew)
+    );
+}

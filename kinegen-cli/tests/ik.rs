@@ -245,6 +245,11 @@ fn show_what_ik_lists_the_derivation() {
         "show_ik_cylindrical_rpp",
         stdout(&["show", "cylindrical_rpp", "--what", "ik"])
     );
+    // Five joints: the position first, the approach in the arm's plane, the roll.
+    insta::assert_snapshot!(
+        "show_ik_widowx250",
+        stdout(&["show", "widowx250", "--what", "ik"])
+    );
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "6"]);
     assert!(text.contains("(joint 6 locked)"), "{text}");
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "2"]);
@@ -373,4 +378,68 @@ fn bad_requests_exit_2_with_a_reason() {
     let e = fails(&["ik", "ur5", "--poses", &bad.to_string_lossy()]);
     assert!(e.contains("pose 0"), "{e}");
     let _ = std::fs::remove_file(&bad);
+}
+
+/// The WidowX 250's forward kinematics as its URDF writes the joints (`robots/urdf/
+/// wx250.urdf`: frames parallel at q = 0), written out here apart from the engine.
+fn widowx250_fk(q: &[f64]) -> nalgebra::Matrix4<f64> {
+    use kinegen_core::numeric::{rot_x, rot_y, rot_z, trans};
+    trans(0.0, 0.0, 0.072)
+        * rot_z(q[0])
+        * trans(0.0, 0.0, 0.03865)
+        * rot_y(q[1])
+        * trans(0.04975, 0.0, 0.25)
+        * rot_y(q[2])
+        * trans(0.25, 0.0, 0.0)
+        * rot_y(q[3])
+        * trans(0.065, 0.0, 0.0)
+        * rot_x(q[4])
+        * trans(0.093, 0.0, 0.0)
+}
+
+/// A 5-joint arm (the WidowX 250, from its URDF): a pose of its own `fk` is reached
+/// exactly; the same point with an orientation it cannot take (the gripper level, facing
+/// away from the arm's plane) gets every branch on the point, none exact.
+#[test]
+fn ik_widowx250_position_first() {
+    let q = [0.4, -0.3, 0.5, 0.2, -0.7];
+    let pose = widowx250_fk(&q);
+    let flat: Vec<String> = pose.transpose().iter().map(|x| format!("{x:e}")).collect();
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "widowx250",
+        "--pose",
+        &flat.join(","),
+        "--json",
+    ]))
+    .unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    let exact = out["exact"].as_array().unwrap();
+    assert!(
+        solutions
+            .iter()
+            .zip(exact)
+            .any(|(s, e)| e.as_bool().unwrap()
+                && floats(s).iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9)),
+        "{out}"
+    );
+    // Level and facing along y, at a point in front of the arm along x.
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "widowx250",
+        "--pose",
+        "0,-1,0,0.3,1,0,0,0.05,0,0,1,0.25,0,0,0,1",
+        "--json",
+    ]))
+    .unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 4, "{out}");
+    for (q, e) in solutions.iter().zip(out["exact"].as_array().unwrap()) {
+        assert!(!e.as_bool().unwrap(), "{out}");
+        let t = widowx250_fk(&floats(q));
+        let miss = (t[(0, 3)] - 0.3)
+            .hypot(t[(1, 3)] - 0.05)
+            .hypot(t[(2, 3)] - 0.25);
+        assert!(miss < 1e-12, "{q}: the point missed by {miss:e}");
+    }
 }
