@@ -8,7 +8,10 @@
 //! - `rs-opw-kinematics` (PUMA 560 only: OPW covers spherical-wrist arms, not the UR),
 //!   with parameters fitted to the same DH table and checked by forward kinematics;
 //! - kinegen's numerical IK to one solution: Newton from a random start (single start)
-//!   and 20 starts keeping the one nearest to the generating configuration.
+//!   and 20 starts keeping the one nearest to the generating configuration;
+//! - a 5-joint arm, the WidowX 250 (`pitch_roll`: the position, the approach in the arm's
+//!   plane, the roll), closed form against one Newton solve from a random start — what
+//!   its maker's SDK does (a numerical IK on the pose).
 //!
 //! The `ik-geo` crate is compared in its own crate, `benches/ik-geo/` (it needs CMake to
 //! build NLopt, which the workspace's tests must not require).
@@ -30,7 +33,7 @@ use ik_common::{miss, poses, same};
 use criterion::{criterion_group, criterion_main, Criterion};
 use kinegen::ik::{solve, solve_nearest, IkOptions, IkTarget, MultiStart, XorShift64};
 use kinegen::Kinematics;
-use kinegen_robots::{Panda, Puma560, Ur5};
+use kinegen_robots::{Panda, Puma560, Ur5, WidowX250};
 use nalgebra::Matrix4;
 use rs_opw_kinematics::glam::{DMat3, DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Kinematics as _, Pose as OpwPose};
@@ -206,6 +209,21 @@ fn report() {
         "UR5 numerical, 20 starts (first from the generating q): that q for {multi}/{}",
         poses_count()
     );
+    let widowx = WidowX250::default();
+    let mut tw = Tally::default();
+    let mut converged = 0;
+    for (pose, q0) in &poses(&widowx, 2026, poses_count()) {
+        let s: Vec<[f64; 5]> = widowx.ik(pose).exact().map(|b| b.q).collect();
+        tw.add(&widowx, pose, q0, &s);
+        let target = IkTarget::Pose(kinegen::adapters::pose_isometry(pose));
+        let seed = rng.configuration(&widowx.limits());
+        converged += solve(&widowx, &target, &seed, &opts).is_ok() as usize;
+    }
+    tw.print("WidowX 250 kinegen ik (exact)");
+    println!(
+        "WidowX 250 numerical, single random start: converged for {converged}/{}",
+        poses_count()
+    );
 }
 
 fn bench(c: &mut Criterion) {
@@ -252,6 +270,15 @@ fn bench(c: &mut Criterion) {
             }
         })
     });
+    let widowx = WidowX250::default();
+    let widowx_set = poses(&widowx, 2026, poses_count());
+    g.bench_function("widowx250_kinegen_ik", |b| {
+        b.iter(|| {
+            for (pose, _) in &widowx_set {
+                black_box(widowx.ik(black_box(pose)));
+            }
+        })
+    });
     g.finish();
     let targets: Vec<(IkTarget, [f64; 6], [f64; 6])> = {
         let mut rng = XorShift64::new(7);
@@ -273,6 +300,25 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             for (t, seed, _) in &targets {
                 black_box(solve(&ur5, t, seed, &opts).is_ok());
+            }
+        })
+    });
+    let widowx_targets: Vec<(IkTarget, [f64; 5])> = {
+        let mut rng = XorShift64::new(7);
+        widowx_set
+            .iter()
+            .map(|(p, _)| {
+                (
+                    IkTarget::Pose(kinegen::adapters::pose_isometry(p)),
+                    rng.configuration(&widowx.limits()),
+                )
+            })
+            .collect()
+    };
+    g.bench_function("widowx250_newton_single_start", |b| {
+        b.iter(|| {
+            for (t, seed) in &widowx_targets {
+                black_box(solve(&widowx, t, seed, &opts).is_ok());
             }
         })
     });
