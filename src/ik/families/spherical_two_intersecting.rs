@@ -8,6 +8,7 @@ use super::position::{shoulder_elbow, shoulder_slide};
 use super::wrist::{with_wrist, Wrist};
 use super::WristPair;
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
+use crate::ik::polish::polish;
 use crate::ik::setup::wrist_centre;
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1, sp3, sp4, Fit};
@@ -37,6 +38,8 @@ pub fn spherical_two_intersecting(
     // distances through it lose digits. The branches are checked against `fk`.
     let far = if skew <= SHOULDER_FAR {
         Fit::Double
+    } else if skew <= SHOULDER_GRAZING {
+        Fit::Checked
     } else {
         Fit::Exact
     };
@@ -47,6 +50,11 @@ pub fn spherical_two_intersecting(
         let wrist_of = (wrist.target(&r36), || r36);
         with_wrist(&wrist, q123, wrist_of, fit.and(far), free, out);
     });
+    if skew <= SHOULDER_GRAZING {
+        for c in out.as_mut_slice() {
+            c.q = polish(g, c.q, pose);
+        }
+    }
 }
 
 /// `|h1 × h2|²` at or below which the shoulder's axes are taken as parallel: the engine
@@ -58,6 +66,13 @@ const SHOULDER_PARALLEL: f64 = 1e-24;
 /// `|h1 × h2|²` below which the meeting point is so far out that the branches through it
 /// are checked against `fk` (flagged [`Fit::Double`]) rather than trusted.
 const SHOULDER_FAR: f64 = 1e-12;
+
+/// `|h1 × h2|²` (the shoulder's axes within about 0.1 rad of parallel) below which SP2's
+/// circles meet at a grazing angle δ and its roots carry rounding amplified by about
+/// 1/δ²: measured on the iiwa with joint 2 locked near 0, 1e-13/δ² of the pose (7.7e-9 at
+/// δ = 2.2e-3, 1e-11 at δ = 0.04–0.09). Every branch is then brought onto the pose by
+/// Gauss–Newton on `fk` (`polish.rs`) and checked there ([`Fit::Checked`]).
+const SHOULDER_GRAZING: f64 = 1e-2;
 
 /// The spherical-wrist family with the shoulder's axes parallel at this pose (`h2 = σ h1`,
 /// possibly one line), so `R1 R2 = rot(h1, q1 + σ q2)`:
