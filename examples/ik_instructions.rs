@@ -6,7 +6,7 @@
 //!
 //! Run: `cargo build --release --example ik_instructions`, then
 //! `valgrind --tool=callgrind target/release/examples/ik_instructions ur5` (or `puma560`,
-//! `panda`):
+//! `panda`, the quartic families' `skew_shoulder` and `ur5e_wrist_offset`, `widowx250`):
 //! instructions per `ik` = the total / 20 000 (the set-up adds under 1 %). Without
 //! valgrind it prints the time per `ik` too (a rough figure: criterion's is the one
 //! `BENCHMARKS.md` reports).
@@ -15,7 +15,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use kinegen::Kinematics;
-use kinegen_robots::{Panda, Puma560, Ur5};
+use kinegen_robots::{Panda, Puma560, SkewShoulder, Ur5, Ur5eWristOffset, WidowX250};
 
 // The bench's own poses (fk of configurations drawn within the limits, seeded).
 #[path = "../benches/common/ik.rs"]
@@ -46,8 +46,15 @@ fn main() {
         Some("panda") => run(&Panda::default(), |r, p, q| {
             black_box(r.ik_with(p, black_box(q[6]))).len()
         }),
+        Some("skew_shoulder") => run(&SkewShoulder::default(), |r, p, _| black_box(r.ik(p)).len()),
+        Some("ur5e_wrist_offset") => run(&Ur5eWristOffset::default(), |r, p, _| {
+            black_box(r.ik(p)).len()
+        }),
+        Some("widowx250") => run(&WidowX250::default(), |r, p, _| black_box(r.ik(p)).len()),
         Some(other) => {
-            eprintln!("unknown robot {other:?}: ur5, puma560 or panda");
+            eprintln!(
+                "unknown robot {other:?}: ur5, puma560, panda, skew_shoulder, ur5e_wrist_offset or widowx250"
+            );
             std::process::exit(2);
         }
     }

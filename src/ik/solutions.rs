@@ -263,8 +263,11 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         let Some((q, within_limits)) = settle(c.q, revolute, limits) else {
             continue;
         };
+        // A quartic's simple root (`Checked`) is no more singular than an exact
+        // subproblem's: only its accuracy is measured.
         let (residual, singular) = match c.fit {
             Fit::Exact => (0.0, 0),
+            Fit::Checked => (check.residual(&q, pose), 0),
             _ => (check.residual(&q, pose), check.singular(&q)),
         };
         // Unchecked branches have residual 0: every subproblem solved exactly.
