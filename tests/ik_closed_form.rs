@@ -579,17 +579,42 @@ fn panda_within_a_micro_radian_of_q2_zero() {
     }
 }
 
+/// The Panda's `ik_near` followed along `path(t)`, `t` from 0 to 1 in `steps` steps (q7
+/// fixed), each from the last answer: every answer reaches its pose, moves by at most
+/// twice the path's step and stays within that of the path.
+fn follow_ik_near(robot: &Panda, path: impl Fn(f64) -> [f64; 7], steps: usize) {
+    let revolute = &Panda::REVOLUTE;
+    let step = (0..7)
+        .map(|i| (path(1.0)[i] - path(0.0)[i]).abs() / steps as f64)
+        .fold(0.0, f64::max);
+    let mut current = path(0.0);
+    for k in 1..=steps {
+        let q = path(k as f64 / steps as f64);
+        let pose = robot.fk(&q);
+        let near = robot
+            .ik_near(&pose, &current)
+            .unwrap_or_else(|| panic!("ik_near found nothing at {q:?}"));
+        let e = pose_error(&robot.fk(&near), &pose);
+        assert!(e <= 1e-10, "ik_near({q:?}) is {e:e} off");
+        let (moved, off) = (
+            joint_gap(&near, &current, revolute),
+            joint_gap(&near, &q, revolute),
+        );
+        assert!(
+            moved <= 2.0 * step && off <= 2.0 * step,
+            "ik_near jumped by {moved:e} (path step {step:e}) at {q:?}: {near:?} from {current:?}"
+        );
+        current = near;
+    }
+}
+
 /// `ik_near` along 40 paths across `q2 = 0` (q7 fixed; 400 steps from q2 = −0.02 to
 /// 0.02, the other joints, drawn in the limits, moving up to 0.02 rad), each followed
-/// from the last answer:
-/// every answer reaches its pose, moves by at most twice the path's step and stays within
-/// that of the path (at q2 = 0 only q1 + q3 is fixed: q1 keeps its last value).
+/// from the last answer (at q2 = 0 only q1 + q3 is fixed: q1 keeps its last value).
 #[test]
 fn panda_ik_near_across_q2_zero() {
     let robot = Panda::default();
-    let revolute = &Panda::REVOLUTE;
     let mut rng = XorShift64::new(3);
-    let steps = 400;
     for _ in 0..40 {
         // Drawn without snapping: the path is about q2 = 0, not compound singularities.
         let a: [f64; 7] = core::array::from_fn(|i| {
@@ -606,29 +631,138 @@ fn panda_ik_near_across_q2_zero() {
             q[1] = -0.02 + t * 0.04;
             q
         };
-        let step = (0..7)
-            .map(|i| (path(1.0)[i] - path(0.0)[i]).abs() / steps as f64)
-            .fold(0.0, f64::max);
-        let mut current = path(0.0);
-        for k in 1..=steps {
-            let q = path(k as f64 / steps as f64);
-            let pose = robot.fk(&q);
-            let near = robot
-                .ik_near(&pose, &current)
-                .unwrap_or_else(|| panic!("ik_near found nothing at {q:?}"));
-            let e = pose_error(&robot.fk(&near), &pose);
-            assert!(e <= 1e-10, "ik_near({q:?}) is {e:e} off");
-            let (moved, off) = (
-                joint_gap(&near, &current, revolute),
-                joint_gap(&near, &q, revolute),
-            );
-            assert!(
-                moved <= 2.0 * step && off <= 2.0 * step,
-                "ik_near jumped by {moved:e} (path step {step:e}) at {q:?}: {near:?} from {current:?}"
-            );
-            current = near;
+        follow_ik_near(&robot, path, 400);
+    }
+}
+
+/// A Panda configuration whose wrist point — where axes 5 and 6 meet, the origin of link
+/// frame 5 — lies on axis 1 (the shoulder singularity), from `q` with q3 and q2 changed:
+/// q3 puts the point in the plane ⟂ axis 2 through the shoulder (bisection on a sign
+/// change), q2 then turns it onto axis 1. `None` where no q3 within the limits does.
+fn panda_wrist_on_axis_1(robot: &Panda, mut q: [f64; 7]) -> Option<[f64; 7]> {
+    let shoulder = [0.0, 0.0, 0.333];
+    let point = |q: &[f64; 7]| {
+        let f = robot.frames(q);
+        let t = f[4];
+        [t[0][3], t[1][3], t[2][3]]
+    };
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    // Axis 2 (z of link frame 2) does not move with q2 or q3.
+    let h2 = |q: &[f64; 7]| {
+        let t = robot.frames(q)[1];
+        [t[0][2], t[1][2], t[2][2]]
+    };
+    let along = |q: &[f64; 7]| dot(h2(q), sub(point(q), shoulder));
+    let [lo, hi] = Panda::LIMITS[2];
+    let at = |x: f64| {
+        let mut r = q;
+        r[2] = x;
+        along(&r)
+    };
+    let steps = 64;
+    let (mut a, mut b) = (0..steps)
+        .map(|i| {
+            let x = lo + (hi - lo) * i as f64 / steps as f64;
+            (x, x + (hi - lo) / steps as f64)
+        })
+        .find(|&(x, y)| at(x).signum() != at(y).signum())?;
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if at(a).signum() == at(m).signum() {
+            a = m;
+        } else {
+            b = m;
         }
     }
+    q[2] = 0.5 * (a + b);
+    // v ⟂ h2 turned about h2 onto axis 1: its part along e = z × h2 vanishes.
+    let h = h2(&q);
+    let q2 = q[1];
+    let v = sub(point(&q), shoulder);
+    let e = cross([0.0, 0.0, 1.0], h);
+    let (c, s) = (dot(e, v), dot(e, cross(h, v)));
+    let turn = (-c).atan2(s);
+    let [lo, hi] = Panda::LIMITS[1];
+    [turn, turn + PI, turn - PI]
+        .into_iter()
+        .map(|t| q2 + t)
+        .find(|x| (lo..=hi).contains(x))
+        .map(|x| {
+            q[1] = x;
+            q
+        })
+}
+
+/// The Panda's shoulder singularity, the wrist point on axis 1 (He & Liu's solver
+/// degenerates there): 500 configurations on it (q1, q4–q7 drawn in the limits, q3 and q2
+/// solved), and 500 each at 1e-6 and 1e-3 rad of q2 from it. Every exact branch reaches
+/// the pose, every pose gets one, and the generating configuration is found — or, where
+/// the locked arm's Jacobian is singular, `ik_near` returns it; `ik_near` followed across
+/// it on 40 of them (as across q2 = 0).
+#[test]
+fn panda_wrist_point_on_axis_1() {
+    let robot = Panda::default();
+    let revolute = &Panda::REVOLUTE;
+    let mut rng = XorShift64::new(15);
+    let (mut on, mut singular_count) = (0, 0);
+    while on < 500 {
+        let q: [f64; 7] = core::array::from_fn(|i| {
+            let [lo, hi] = Panda::LIMITS[i];
+            lo + (hi - lo) * rng.next_f64()
+        });
+        let Some(q) = panda_wrist_on_axis_1(&robot, q) else {
+            continue;
+        };
+        let f = robot.frames(&q)[4];
+        assert!(f[0][3].hypot(f[1][3]) <= 1e-12, "{q:?}: {f:?}");
+        on += 1;
+        if on <= 40 {
+            // Across it: q2 from 0.02 below to 0.02 above, 400 steps.
+            let across = |t: f64| {
+                let mut p = q;
+                p[1] += 0.04 * t - 0.02;
+                p
+            };
+            if across(0.0)[1] >= Panda::LIMITS[1][0] && across(1.0)[1] <= Panda::LIMITS[1][1] {
+                follow_ik_near(&robot, across, 400);
+            }
+        }
+        for offset in [0.0, 1e-6, -1e-3] {
+            let mut q = q;
+            q[1] += offset;
+            if !(Panda::LIMITS[1][0]..=Panda::LIMITS[1][1]).contains(&q[1]) {
+                continue;
+            }
+            let pose = robot.fk(&q);
+            let j = robot.jacobian(&q);
+            let m: [[f64; 6]; 6] = core::array::from_fn(|r| core::array::from_fn(|c| j[r][c]));
+            let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+            singular_count += usize::from(singular);
+            let sols = robot.ik_with(&pose, q[6]);
+            let near = robot.ik_near(&pose, &q);
+            check(
+                "Panda",
+                &q,
+                &pose,
+                &sols,
+                near,
+                singular,
+                false,
+                revolute,
+                |x| robot.fk(x),
+                pose_error,
+            );
+        }
+    }
+    eprintln!("Panda, wrist point on axis 1: {singular_count} singular of the 1 500");
 }
 
 locked_self_test!(panda_joint_7_free, Panda, 7);
