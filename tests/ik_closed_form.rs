@@ -309,6 +309,12 @@ self_test!(planar_rr, PlanarRr, 22, task);
 self_test!(planar_rrr, PlanarRrr, 333, task);
 self_test!(scara, Scara, 600, task);
 self_test!(cylindrical_rpp, CylindricalRpp, 303, task);
+
+kinegen::kinematics! {
+    /// A Cartesian gantry with a yaw axis (made up for the tests).
+    pub struct GantryYaw = "tests/data/gantry_yaw.toml";
+}
+self_test!(gantry_yaw, GantryYaw, 404, task);
 // A 5-joint arm has no determinant and no singular factors: its 6 × 5 Jacobian's
 // smallest singular value, relative to the largest, decides.
 self_test!(

@@ -140,7 +140,7 @@ impl<'a> Solver<'a> {
     /// The task rows a planar arm solves (`None`: the whole pose).
     fn task_rows(&self) -> Option<Vec<usize>> {
         match self.ik.plan.family {
-            Family::Planar { .. } | Family::Position(_) => self
+            Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => self
                 .chain
                 .task
                 .as_ref()
@@ -359,7 +359,10 @@ pub fn to_table(family: &str, r: &PoseResult) -> String {
     if let Some(psi) = r.arm_angle {
         let _ = writeln!(s, "arm angle {psi}");
     }
-    let _ = writeln!(s, "{} solutions", r.branches.len());
+    let _ = match r.branches.len() {
+        1 => writeln!(s, "1 solution"),
+        n => writeln!(s, "{n} solutions"),
+    };
     for (i, b) in r.branches.iter().enumerate() {
         let q: Vec<String> = b.q.iter().map(|x| format!("{x:>10.6}")).collect();
         let mut flags = vec![if b.exact { "exact" } else { "nearest" }.to_string()];
@@ -515,10 +518,13 @@ pub fn show(chain: &Chain, derived: &Derived) -> String {
             for (i, step) in ik.plan.steps.iter().enumerate() {
                 let _ = writeln!(s, "{}. {step}", i + 1);
             }
+            let most = match ik.plan.max_solutions {
+                1 => "one solution".to_string(),
+                n => format!("at most {n} solutions"),
+            };
             let _ = writeln!(
                 s,
-                "\nat most {} solutions per pose; the family was decided exactly from the joint axes at q = 0",
-                ik.plan.max_solutions
+                "\n{most} per pose; the family was decided exactly from the joint axes at q = 0"
             );
             if let Some(steps) = &ik.plan.arm_angle {
                 let _ = writeln!(

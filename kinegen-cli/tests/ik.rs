@@ -443,3 +443,35 @@ fn ik_widowx250_position_first() {
         assert!(miss < 1e-12, "{q}: the point missed by {miss:e}");
     }
 }
+
+/// A Cartesian gantry with a yaw axis (`tests/data/gantry_yaw.toml`, P P P R, task x, y,
+/// z, rz): the engine's family, and the configuration of a pose made by the numeric
+/// reference found by the binary.
+#[test]
+fn ik_cartesian_gantry_with_yaw() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/gantry_yaw.toml");
+    let toml = std::fs::read_to_string(&path).unwrap();
+    let file = path.to_str().unwrap();
+    let show = stdout(&["show", file, "--what", "ik"]);
+    assert!(
+        show.contains("position and yaw, Cartesian with a turn about z")
+            && show.contains("one solution per pose"),
+        "{show}"
+    );
+    let (robot, _) = toml_file::load_str(&toml, "gantry_yaw.toml").unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    let q = [0.2, 0.3, 0.4, 0.7];
+    let pose = reference.fk(&q).unwrap();
+    let flat: Vec<String> = pose.transpose().iter().map(|x| format!("{x:e}")).collect();
+    let out: Value =
+        serde_json::from_str(&stdout(&["ik", file, "--pose", &flat.join(","), "--json"])).unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 1, "{out}");
+    assert!(out["exact"][0].as_bool().unwrap(), "{out}");
+    let got = floats(&solutions[0]);
+    assert!(
+        got.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-12),
+        "{got:?}"
+    );
+}

@@ -210,6 +210,19 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
         }
         return Ok(finished(&c, pr, checks));
     }
+    if pr.plan.solver == "cartesian_yaw" {
+        if n != 4 {
+            return Err("the gantry with a yaw axis has 4 joints");
+        }
+        let g = geometry::<4>(pr.geometry);
+        let free: [f64; 4] = core::array::from_fn(|i| pr.free[i]);
+        let Some(r) = (0..4).find(|&i| !g.prismatic[i]) else {
+            return Err("the gantry with a yaw axis has one revolute joint");
+        };
+        let mut c = Candidates::<4, 1>::default();
+        families::cartesian_yaw(&g, &pose, r, &free, &mut c);
+        return Ok(finished(&c, pr, checks));
+    }
     if pr.plan.solver == "pitch_roll" {
         return match n {
             4 => Ok(pitch_roll::<4>(pr, checks)),

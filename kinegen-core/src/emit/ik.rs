@@ -196,7 +196,7 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
         value: format!("&[{}]", steps.join(", ")),
     }));
     let task_rows = match &plan.family {
-        Family::Planar { .. } | Family::Position(_) => chain
+        Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => chain
             .task
             .as_ref()
             .map(|t| t.iter().map(|r| TaskRow::index(*r)).collect()),
@@ -334,6 +334,9 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             } => format!("&{g_}, {target}, &{revolute:?}, {prismatic:?}, {free_}"),
             Family::Position(Position::OneRevolute { revolute_first }) => {
                 format!("&{g_}, {target}, {revolute_first}, {free_}")
+            }
+            Family::CartesianYaw { revolute } => {
+                format!("&{g_}, {target}, {revolute}, {free_}")
             }
             Family::Position(_) | Family::PitchRoll { .. } => {
                 format!("&{g_}, {target}, {free_}")

@@ -18,6 +18,7 @@
 //! prismatic: [`spherical_two_intersecting()`], [`spherical_two_intersecting_prismatic`]),
 //! `planar.rs` (every axis along world z: [`planar()`]), `position.rs` (three joints
 //! placing the tool point: [`position_intersecting`] and the other position cases),
+//! `cartesian_yaw.rs` (a gantry with a turn about z, task x, y, z, rz: [`cartesian_yaw()`]),
 //! `pitch_roll.rs` (four or five joints, h2 ∥ h3 ∥ h4: position, the approach in the
 //! arm's plane and a roll — [`pitch_roll()`]),
 //! and the two whose first step is a quartic, every branch checked against `fk`:
@@ -29,6 +30,7 @@
 use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
 
+mod cartesian_yaw;
 mod pitch_roll;
 mod planar;
 mod position;
@@ -40,6 +42,7 @@ mod three_parallel;
 mod ur;
 mod wrist;
 
+pub use cartesian_yaw::cartesian_yaw;
 pub use pitch_roll::pitch_roll;
 pub use planar::planar;
 pub use position::{

@@ -11,6 +11,7 @@
 //! | spherical wrist, two intersecting, prismatic 3 | as above, joint 3 prismatic | Stanford arm |
 //! | planar | every axis along world z; task rows x, y (+ rz, + z) | planar 2R/3R, SCARA |
 //! | position | three joints, task rows x, y, z: R R R with h1 ∩ h2 or h2 ∥ h3, R R P with h1 ∩ h2, R P P, P P R, P P P | elbow, spherical, cylindrical, Cartesian arms |
+//! | Cartesian with yaw | four joints, task rows x, y, z, rz: three prismatic (independent at every yaw) and one revolute about world z, in any order | gantry with a rotary tool axis |
 //! | pitch and roll | four or five revolute joints, h2 ∥ h3 ∥ h4, h1 ∦ h2; with five, h5 ∦ h2 and the tool point on axis 5: position first, the approach in the arm's plane, the roll | OpenManipulator-X (4), WidowX 250, youBot (5) |
 //!
 //! and, where none of those fits either way, the families whose first step is a quartic
@@ -65,6 +66,13 @@ pub enum Family {
     },
     /// Three joints placing the tool point (task rows x, y, z).
     Position(Position),
+    /// Three prismatic joints and one revolute joint about world z, in any order (task
+    /// rows x, y, z, rz): the yaw, then the slides from a linear system
+    /// (`kinegen::ik::families::cartesian_yaw`).
+    CartesianYaw {
+        /// The revolute joint (0-based).
+        revolute: usize,
+    },
     /// Four or five revolute joints, h2 ∥ h3 ∥ h4 after h1 (h1 ∦ h2); with five, the tool
     /// point on axis 5 (h5 ∦ h2): the position, the approach in the arm's plane and the
     /// roll (`kinegen::ik::families::pitch_roll`).
@@ -140,6 +148,7 @@ impl Family {
             Family::Position(Position::OneRevolute { .. }) => "position_one_revolute",
             Family::Position(Position::Cartesian) => "position_cartesian",
             Family::PitchRoll { .. } => "pitch_roll",
+            Family::CartesianYaw { .. } => "cartesian_yaw",
             Family::Spherical => "spherical",
             Family::ThreeParallel => "three_parallel",
         }
@@ -172,6 +181,7 @@ impl Family {
                 revolute_first: false,
             }) => "position, P P R",
             Family::Position(Position::Cartesian) => "position, Cartesian (P P P)",
+            Family::CartesianYaw { .. } => "position and yaw, Cartesian with a turn about z",
             Family::PitchRoll { roll: false } => "position and pitch, h2 ∥ h3 ∥ h4 (4 joints)",
             Family::PitchRoll { roll: true } => {
                 "position, pitch and roll, h2 ∥ h3 ∥ h4, tool on axis 5 (5 joints)"
@@ -186,7 +196,7 @@ impl Family {
         match self {
             Family::Planar { .. } => 2,
             Family::Position(Position::OneRevolute { .. }) => 2,
-            Family::Position(Position::Cartesian) => 1,
+            Family::Position(Position::Cartesian) | Family::CartesianYaw { .. } => 1,
             Family::Position(_) | Family::PitchRoll { .. } => 4,
             _ => 8,
         }
@@ -219,6 +229,11 @@ pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPl
         rows.sort();
         if on_plane.is_err() && n == 3 && rows == [TaskRow::X, TaskRow::Y, TaskRow::Z] {
             return position(chain, max_terms, &kinds)
+                .map_err(|e| format!("{}; {e}", on_plane.err().unwrap_or_default()));
+        }
+        let yaw_rows = [TaskRow::X, TaskRow::Y, TaskRow::Z, TaskRow::Rz];
+        if on_plane.is_err() && n == 4 && rows == yaw_rows {
+            return cartesian_yaw(chain, max_terms, &kinds)
                 .map_err(|e| format!("{}; {e}", on_plane.err().unwrap_or_default()));
         }
         return on_plane;
@@ -811,6 +826,68 @@ fn position(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPl
     };
     let m = Match {
         family: Family::Position(case),
+        steps,
+        half_turn: false,
+        reversed: false,
+    };
+    Ok(finish(m, None, Vec::new(), None))
+}
+
+/// Four joints, task rows x, y, z, rz, not all along z: [`Family::CartesianYaw`], decided
+/// exactly at `q = 0`.
+fn cartesian_yaw(chain: &Chain, max_terms: usize, kinds: &[JointKind]) -> Result<IkPlan, String> {
+    let revolute: Vec<usize> = (0..4)
+        .filter(|&i| kinds[i] == JointKind::Revolute)
+        .collect();
+    let &[r] = revolute.as_slice() else {
+        return Err(format!(
+            "Cartesian with yaw: {} revolute joints (it has one, about z, and three prismatic)",
+            revolute.len()
+        ));
+    };
+    let sym = SymbolicChain::at_zero(chain, max_terms, None);
+    let axes = Axes::of(&sym).ok_or("the axes' normal forms are over the term budget")?;
+    let z = crate::kinematics::ik::axes::unit_z();
+    let slides: Vec<usize> = (0..4).filter(|&i| i != r).collect();
+    // The yaw turns the slides after joint r: their determinant stays what it is at q = 0
+    // when none comes before r, or every one after r is vertical.
+    let constant =
+        slides.iter().all(|&i| i > r) || slides.iter().all(|&i| i < r || axes.along(i, &z));
+    let fails = [
+        (
+            !axes.along(r, &z),
+            format!("axis {} is not along world z", r + 1),
+        ),
+        (
+            !axes.independent(slides[0], slides[1], slides[2]),
+            "the prismatic axes are not independent".into(),
+        ),
+        (
+            !constant,
+            format!(
+                "a prismatic axis after joint {} is not vertical: the yaw would turn it against those before",
+                r + 1
+            ),
+        ),
+    ];
+    if let Some((_, why)) = fails.iter().find(|(fail, _)| *fail) {
+        return Err(format!("Cartesian with yaw: {why}"));
+    }
+    let names: Vec<String> = slides.iter().map(|i| format!("q{}", i + 1)).collect();
+    let steps = vec![
+        format!(
+            "q{} — the yaw: ψ = φ − φ0 (the tool's angle about z, minus its angle at q = 0), q{} = ±ψ",
+            r + 1,
+            r + 1
+        ),
+        format!(
+            "({}) — p = c + Σ qi ai with q{} known (c the tool point with the slides at 0, ai their axes): Cramer's rule",
+            names.join(", "),
+            r + 1
+        ),
+    ];
+    let m = Match {
+        family: Family::CartesianYaw { revolute: r },
         steps,
         half_turn: false,
         reversed: false,
