@@ -7,12 +7,21 @@
 //!   them;
 //! - the intervals: ψ just inside an interval's end gives the configuration within the
 //!   limits, just outside a joint over its limit — at both ends, for every configuration of
-//!   200 poses.
+//!   200 poses;
+//! - an f32 iiwa's arm-angle methods: the f64 iiwa's (with the f32 parameters widened) on
+//!   the same widened pose and ψ, rounded to f32 — solutions and flags, the arm angle, the
+//!   intervals (with the f32 robot's limits).
 
 use core::f64::consts::{PI, TAU};
 use kinegen::ik::families::configuration;
 use kinegen::ik::XorShift64;
 use kinegen_robots::KukaIiwa14;
+
+kinegen::kinematics! {
+    /// The iiwa in single precision.
+    pub struct KukaIiwa14F32 = "robots/kuka_iiwa14.toml";
+    scalar: f32,
+}
 
 fn pose_error(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> f64 {
     let mut e: f64 = 0.0;
@@ -129,4 +138,59 @@ fn the_intervals_end_where_a_joint_meets_its_limit() {
     }
     eprintln!("{ends} interval ends checked");
     assert!(ends > 100);
+}
+
+#[test]
+fn f32_arm_angle_is_the_f64_one_rounded() {
+    let r32 = KukaIiwa14F32::default();
+    let r64 = KukaIiwa14 {
+        d1: f64::from(r32.d1),
+        d3: f64::from(r32.d3),
+        d5: f64::from(r32.d5),
+        d7: f64::from(r32.d7),
+    };
+    let mut rng = XorShift64::new(0xf32);
+    let mut solutions = 0;
+    for _ in 0..500 {
+        let q = random_q(&mut rng).map(|x| x as f32);
+        let pose32 = r32.fk(&q);
+        let pose = pose32.map(|r| r.map(f64::from));
+        // What the f32 robot solves: its pose widened and made orthonormal.
+        let target = kinegen::ik::solutions::pose_matrix(&kinegen::ik::solutions::orthonormalized(
+            &kinegen::ik::geometry::Pose::from_matrix(&pose),
+        ));
+        let psi32 = r32.arm_angle(&q).unwrap_or(0.3);
+        let psi = f64::from(psi32);
+        assert_eq!(
+            r32.arm_angle(&q),
+            r64.arm_angle(&q.map(f64::from)).map(|x| x as f32)
+        );
+        let (a, b) = (
+            r32.ik_arm_angle(&pose32, psi32),
+            r64.ik_arm_angle(&target, psi),
+        );
+        assert_eq!(a.len(), b.len(), "{q:?}");
+        for (x, y) in a.iter().zip(b.iter()) {
+            assert_eq!(x.q, y.q.map(|v| v as f32), "{q:?}");
+            // (`within_limits` is judged against each robot's own limits, the f32 ones
+            // rounded: not compared.)
+            assert_eq!((x.exact, x.singular), (y.exact, y.singular), "{q:?}");
+        }
+        solutions += a.len();
+        // The f32 robot's limits are its own (rounded to f32), widened.
+        let limits = KukaIiwa14F32::LIMITS.map(|l| l.map(f64::from));
+        for config in [[true, true, true], [false, true, false]] {
+            let own = kinegen::ik::families::arm_angle_intervals(
+                &r64.ik_geometry(),
+                &kinegen::ik::geometry::Pose::from_matrix(&target),
+                config,
+                &limits,
+            );
+            assert_eq!(
+                r32.arm_angle_intervals(&pose32, config).as_slice(),
+                own.as_slice()
+            );
+        }
+    }
+    assert!(solutions >= 500, "{solutions}");
 }

@@ -144,8 +144,8 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
                 ),
             }));
             items.push(Item::Method(seeded(chain, model, &ty, Some(locked))));
-            if let (Some(steps), Scalar::F64) = (&plan.arm_angle, chain.scalar) {
-                items.extend(arm_angle_items(n, steps));
+            if let Some(steps) = &plan.arm_angle {
+                items.extend(arm_angle_items(n, steps, chain.scalar));
             }
         }
     }
@@ -214,8 +214,9 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
 }
 
 /// An S-R-S arm's solutions by arm angle: `ik_arm_angle`, `arm_angle`,
-/// `arm_angle_intervals` (f64 robots).
-fn arm_angle_items(n: usize, steps: &[String]) -> Vec<Item> {
+/// `arm_angle_intervals`. An f32 robot's take and give f32 (solved in f64 inside, as its
+/// `ik` is); its intervals stay f64 radians (their ends are exact crossings).
+fn arm_angle_items(n: usize, steps: &[String], scalar: Scalar) -> Vec<Item> {
     let steps: Vec<String> = steps
         .iter()
         .enumerate()
@@ -225,6 +226,39 @@ fn arm_angle_items(n: usize, steps: &[String]) -> Vec<Item> {
         args: args.into(),
         lets,
         result,
+    };
+    let f = scalar_name(scalar);
+    // The f32 robot's inputs widened, its pose orthonormalized, its limits in f64.
+    let (widen, target, limits, to_f32) = match scalar {
+        Scalar::F64 => (
+            vec![],
+            "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);",
+            "&Self::LIMITS",
+            "",
+        ),
+        Scalar::F32 => (
+            vec!["let pose: &[[f64; 4]; 4] = &pose.map(|row| row.map(f64::from));".to_string()],
+            "let target = ::kinegen::ik::solutions::orthonormalized(&::kinegen::ik::geometry::Pose::from_matrix(pose));",
+            "&Self::LIMITS.map(|l| l.map(f64::from))",
+            ".to_f32()",
+        ),
+    };
+    let mut ik_lets = widen.clone();
+    if scalar == Scalar::F32 {
+        ik_lets.push("let psi = f64::from(psi);".into());
+    }
+    ik_lets.extend([
+        target.to_string(),
+        "if !target.is_finite() || !psi.is_finite() { return ::kinegen::ik::IkSolutions::empty(); }".into(),
+        "let g = self.ik_geometry();".into(),
+        "let mut candidates = ::kinegen::ik::solutions::Candidates::default();".into(),
+        format!("::kinegen::ik::families::srs_arm_angle(&g, &target, psi, ::kinegen::ik::families::WristPair::HalfTurn, &[0.0; {n}], &mut candidates);"),
+    ]);
+    let mut interval_lets = widen;
+    interval_lets.push(target.to_string());
+    let (q_arg, q_value, angle_out) = match scalar {
+        Scalar::F64 => ("q", "q", ""),
+        Scalar::F32 => ("q", "&q.map(f64::from)", ".map(|psi| psi as f32)"),
     };
     vec![
         Item::Method(Method {
@@ -238,17 +272,15 @@ fn arm_angle_items(n: usize, steps: &[String]) -> Vec<Item> {
             ),
             name: "ik_arm_angle",
             rates: false,
-            ret: format!("::kinegen::ik::IkSolutions<{n}, 8>"),
+            ret: if scalar == Scalar::F32 {
+                format!("::kinegen::ik::IkSolutions<{n}, 8, f32>")
+            } else {
+                format!("::kinegen::ik::IkSolutions<{n}, 8>")
+            },
             body: custom(
-                "pose: &[[f64; 4]; 4], psi: f64",
-                vec![
-                    "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);".into(),
-                    "if !target.is_finite() || !psi.is_finite() { return ::kinegen::ik::IkSolutions::empty(); }".into(),
-                    "let g = self.ik_geometry();".into(),
-                    "let mut candidates = ::kinegen::ik::solutions::Candidates::default();".into(),
-                    format!("::kinegen::ik::families::srs_arm_angle(&g, &target, psi, ::kinegen::ik::families::WristPair::HalfTurn, &[0.0; {n}], &mut candidates);"),
-                ],
-                "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &Self::LIMITS, self)".into(),
+                &format!("pose: &[[{f}; 4]; 4], psi: {f}"),
+                ik_lets,
+                format!("::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, {limits}, self){to_f32}"),
             ),
         }),
         Item::Method(Method {
@@ -258,29 +290,33 @@ fn arm_angle_items(n: usize, steps: &[String]) -> Vec<Item> {
                 .into(),
             name: "arm_angle",
             rates: false,
-            ret: "::core::option::Option<f64>".into(),
+            ret: format!("::core::option::Option<{f}>"),
             body: custom(
-                &format!("q: &[f64; {n}]"),
+                &format!("{q_arg}: &[{f}; {n}]"),
                 vec![],
-                "::kinegen::ik::families::arm_angle(&self.ik_geometry(), q)".into(),
+                format!("::kinegen::ik::families::arm_angle(&self.ik_geometry(), {q_value}){angle_out}"),
             ),
         }),
         Item::Method(Method {
-            doc: "The exact intervals of arm angle in which configuration `config` (`[q2 ≥ 0, \
-                  q4 ≥ 0, q6 ≥ 0]`, see `kinegen::ik::families::configuration`) of `pose` has every \
-                  joint inside `LIMITS`: each limit is met where a sinusoid of ψ vanishes, so a \
-                  user can pick ψ without sampling. Empty when that configuration cannot reach \
-                  the pose within the limits."
-                .into(),
+            doc: format!(
+                "The exact intervals of arm angle in which configuration `config` (`[q2 ≥ 0, \
+                 q4 ≥ 0, q6 ≥ 0]`, see `kinegen::ik::families::configuration`) of `pose` has every \
+                 joint inside `LIMITS`: each limit is met where a sinusoid of ψ vanishes, so a \
+                 user can pick ψ without sampling. Empty when that configuration cannot reach \
+                 the pose within the limits.{}",
+                if scalar == Scalar::F32 {
+                    " In f64 radians, as the crossings are found."
+                } else {
+                    ""
+                }
+            ),
             name: "arm_angle_intervals",
             rates: false,
             ret: "::kinegen::ik::families::ArmAngleIntervals".into(),
             body: custom(
-                "pose: &[[f64; 4]; 4], config: [bool; 3]",
-                vec![
-                    "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);".into(),
-                ],
-                "::kinegen::ik::families::arm_angle_intervals(&self.ik_geometry(), &target, config, &Self::LIMITS)".into(),
+                &format!("pose: &[[{f}; 4]; 4], config: [bool; 3]"),
+                interval_lets,
+                format!("::kinegen::ik::families::arm_angle_intervals(&self.ik_geometry(), &target, config, {limits})"),
             ),
         }),
     ]
