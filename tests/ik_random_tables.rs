@@ -688,8 +688,10 @@ fn general_wrist_tables() {
 /// (no family of quadratics fits these tables either way), read the chain the way it was
 /// built, and decide the wrist orthogonal exactly where it is (`spherical`: quarter-turn
 /// wrist twists). `$misses`: how many singular configurations (of the 4 000) may go
-/// unfound — a known gap, see `three_parallel_*`; every exact solution must still reach
-/// the pose and every regular configuration be found.
+/// unfound — a known gap: two of `three_parallel_modified_tables`, where the generating
+/// configuration sits on a double root of SP6 and comes back exact but 1.1e-7 and 1.2e-5
+/// away (the double root's linear convergence), beyond this test's 1e-7; every exact
+/// solution must still reach the pose and every regular configuration be found.
 macro_rules! quartic_test {
     ($test:ident, $seed:expr, $case:expr, $reversed:expr, $convention:expr, $misses:expr) => {
         #[test]
@@ -775,7 +777,7 @@ quartic_test!(
     "three_parallel",
     true,
     Convention::Standard,
-    2
+    0
 );
 quartic_test!(
     three_parallel_reversed_modified_tables,
@@ -783,7 +785,7 @@ quartic_test!(
     "three_parallel",
     true,
     Convention::Modified,
-    1
+    0
 );
 
 /// The pitch-and-roll arm (4 and 5 joints) in both conventions: poses made by its own

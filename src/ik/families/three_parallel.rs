@@ -58,7 +58,15 @@ pub fn three_parallel(
     let x = orthogonal(&h2);
     for ((q1, q5), fit) in pairs.iter() {
         let (r1, r5) = (q1.rot(&h1), q5.rot(&h5));
-        let (q6, f6) = sp1(&r06.tr_mul(&(r1 * h2)), &r5.tr_mul(&h2), &h6, free[5]);
+        let r5_h2 = r5.tr_mul(&h2);
+        // On a double root of (q1, q5) — at the wrist singularity, where it clusters — q5
+        // is good to ~1e-8 only: R5ᵀ h2 within that of h6 is the singularity itself, q6
+        // free (SP1 would read an angle off the rounding).
+        let (q6, f6) = if fit >= Fit::Double && r5_h2.cross(&h6).norm() <= AT_THE_WRIST {
+            (free[5], Fit::Free)
+        } else {
+            sp1(&r06.tr_mul(&(r1 * h2)), &r5_h2, &h6, free[5])
+        };
         // R234 = R1ᵀ R06 R6ᵀ R5ᵀ, a rotation about h2 by θ.
         let r234 = r1.tr_mul(&r06) * rot(&h6, q6).transpose() * r5.transpose();
         let (t, ft) = sp1_angle(&x, &(r234 * x), &h2, 0.0);
@@ -74,3 +82,8 @@ pub fn three_parallel(
         }
     }
 }
+
+/// `|R5ᵀ h2 × h6|` within which a double root of (q1, q5) is taken to be at the wrist
+/// singularity: far above the ~1e-8 to which such a root is placed, far below any regular
+/// wrist.
+const AT_THE_WRIST: f64 = 1e-6;

@@ -96,7 +96,27 @@ pub fn two_sinusoids(a: [[f64; 2]; 2], b: [[f64; 2]; 2], e: [f64; 2]) -> Sp6Root
             continue;
         }
         let u = Angle::atan2(sign * w[1], sign * w[0]);
-        let (u, v) = refine(&a, &b, &e, u, v);
+        let (u, v, fit) = match refine(&a, &b, &e, u, v) {
+            (u, v, true) => (u, v, fit),
+            // A root Newton would move by more than rounding's reach is off the equations:
+            // the quartic split a double root (its coefficients' rounding, amplified
+            // there, 1e-2 apart at a wrist singularity of a three-parallel arm). It is
+            // brought onto the equations by damped Gauss–Newton, where the double root's
+            // Jacobian is singular, and flagged so; both halves land on it, within 1e-6
+            // (the linear convergence's reach): one is kept.
+            (u, v, false) => {
+                let (u, v) = descend(&a, &b, &e, u, v);
+                let near = |x: &Angle, y: &Angle| super::wrap(x.theta - y.theta).abs() <= 1e-6;
+                let (x, y) = if swap { (v, u) } else { (u, v) };
+                if out.pairs[..out.n]
+                    .iter()
+                    .any(|(p, q)| near(p, &x) && near(q, &y))
+                {
+                    continue;
+                }
+                (u, v, fit.and(Fit::Double))
+            }
+        };
         out.pairs[out.n] = if swap { (v, u) } else { (u, v) };
         out.fits[out.n] = fit;
         out.n += 1;
@@ -107,14 +127,15 @@ pub fn two_sinusoids(a: [[f64; 2]; 2], b: [[f64; 2]; 2], e: [f64; 2]) -> Sp6Root
 /// `(u, v)` moved by Newton steps on `A u + B v = e` itself: the quartic's coefficients
 /// are products of the data, with cancellation, so its roots carry more rounding than the
 /// equations allow. Skipped where the equations' Jacobian is near singular (a double root:
-/// the quartic already placed it at its derivative's root).
+/// the quartic already placed it at its derivative's root). `false` with the root as it
+/// was where a step would be beyond rounding's reach (the root is not the equations').
 fn refine(
     a: &[[f64; 2]; 2],
     b: &[[f64; 2]; 2],
     e: &[f64; 2],
     mut u: Angle,
     mut v: Angle,
-) -> (Angle, Angle) {
+) -> (Angle, Angle, bool) {
     let size = |m: &[[f64; 2]; 2]| m.iter().flatten().fold(0.0f64, |x, y| x.max(y.abs()));
     let scale = size(a) * size(b);
     for _ in 0..2 {
@@ -133,11 +154,69 @@ fn refine(
         let dv = -(j[0][0] * r[1] - j[1][0] * r[0]) / det;
         // A refinement, not a search: steps beyond rounding's reach are not taken.
         if !(du.abs() < 1e-6 && dv.abs() < 1e-6) {
-            break;
+            return (u, v, false);
         }
         (u, v) = (turned(u, du), turned(v, dv));
     }
-    (u, v)
+    (u, v, true)
+}
+
+/// `(u, v)` brought onto `A u + B v = e` by damped Gauss–Newton steps (at a double root
+/// the equations' Jacobian is singular and the convergence linear: 60 rounds take an
+/// error of 1e-2 below rounding); the best iterate is kept.
+fn descend(
+    a: &[[f64; 2]; 2],
+    b: &[[f64; 2]; 2],
+    e: &[f64; 2],
+    mut u: Angle,
+    mut v: Angle,
+) -> (Angle, Angle) {
+    let f = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][0] * t.cos + m[k][1] * t.sin;
+    let df = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][1] * t.cos - m[k][0] * t.sin;
+    let residual = |u: &Angle, v: &Angle| {
+        [
+            f(a, 0, u) + f(b, 0, v) - e[0],
+            f(a, 1, u) + f(b, 1, v) - e[1],
+        ]
+    };
+    let size = |r: [f64; 2]| r[0].abs().max(r[1].abs());
+    let (mut best, mut best_miss) = ((u, v), size(residual(&u, &v)));
+    for _ in 0..60 {
+        let r = residual(&u, &v);
+        let j = [[df(a, 0, &u), df(b, 0, &v)], [df(a, 1, &u), df(b, 1, &v)]];
+        // (JᵀJ + λ) δ = −Jᵀ r
+        let jtj = [
+            [
+                j[0][0] * j[0][0] + j[1][0] * j[1][0],
+                j[0][0] * j[0][1] + j[1][0] * j[1][1],
+            ],
+            [0.0, j[0][1] * j[0][1] + j[1][1] * j[1][1]],
+        ];
+        let damping = 1e-14 * (jtj[0][0] + jtj[1][1]);
+        let (p, q, s) = (jtj[0][0] + damping, jtj[0][1], jtj[1][1] + damping);
+        let g = [
+            -(j[0][0] * r[0] + j[1][0] * r[1]),
+            -(j[0][1] * r[0] + j[1][1] * r[1]),
+        ];
+        let det = p * s - q * q;
+        // (NaN included: a step from it would be no step.)
+        if det.is_nan() || det <= 0.0 {
+            break;
+        }
+        let du = (s * g[0] - q * g[1]) / det;
+        let dv = (p * g[1] - q * g[0]) / det;
+        (u, v) = (
+            Angle::new(super::wrap(u.theta + du)),
+            Angle::new(super::wrap(v.theta + dv)),
+        );
+        let miss = size(residual(&u, &v));
+        if miss < best_miss {
+            (best, best_miss) = ((u, v), miss);
+        } else if miss.is_nan() || miss > 2.0 * best_miss {
+            break;
+        }
+    }
+    best
 }
 
 /// `t + d` for a small `d` (|d| < 1e-6: `sin d = d`, `cos d = 1 − d²/2` to rounding).
