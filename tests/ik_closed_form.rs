@@ -510,27 +510,34 @@ fn panda_q2_band(seed: u64, cases: usize, q2: impl Fn(usize, f64) -> f64) {
     for i in 0..cases {
         let mut q = configuration(&mut rng, &Panda::LIMITS, revolute);
         q[1] = q2(i, 2.0 * rng.next_f64() - 1.0);
-        let pose = robot.fk(&q);
-        let j = robot.jacobian(&q);
-        let m: [[f64; 6]; 6] = core::array::from_fn(|r| core::array::from_fn(|c| j[r][c]));
-        let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
-        let sols = robot.ik_with(&pose, q[6]);
-        let near = robot.ik_near(&pose, &q);
-        check(
-            "Panda",
-            &q,
-            &pose,
-            &sols,
-            near,
-            singular,
-            false,
-            revolute,
-            |x| robot.fk(x),
-            pose_error,
-        );
+        let (singular, sols) = check_panda(&robot, &q);
         tally.add(singular, &sols);
     }
     eprintln!("Panda, q2 band: {tally:?}");
+}
+
+/// [`check`] on the Panda's pose of `q` with q7 locked at its value; singular by the
+/// locked 6×6 Jacobian. Returns whether it was singular, and the solutions.
+fn check_panda(robot: &Panda, q: &[f64; 7]) -> (bool, IkSolutions<7, 8>) {
+    let pose = robot.fk(q);
+    let j = robot.jacobian(q);
+    let m: [[f64; 6]; 6] = core::array::from_fn(|r| core::array::from_fn(|c| j[r][c]));
+    let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+    let sols = robot.ik_with(&pose, q[6]);
+    let near = robot.ik_near(&pose, q);
+    check(
+        "Panda",
+        q,
+        &pose,
+        &sols,
+        near,
+        singular,
+        false,
+        &Panda::REVOLUTE,
+        |x| robot.fk(x),
+        pose_error,
+    );
+    (singular, sols)
 }
 
 /// The Panda's `q2 = 0` band, where axes 1 and 3 line up (He & Liu's solver returns a
@@ -716,7 +723,6 @@ fn panda_wrist_on_axis_1(robot: &Panda, mut q: [f64; 7]) -> Option<[f64; 7]> {
 #[test]
 fn panda_wrist_point_on_axis_1() {
     let robot = Panda::default();
-    let revolute = &Panda::REVOLUTE;
     let mut rng = XorShift64::new(15);
     let (mut on, mut singular_count) = (0, 0);
     while on < 500 {
@@ -747,25 +753,7 @@ fn panda_wrist_point_on_axis_1() {
             if !(Panda::LIMITS[1][0]..=Panda::LIMITS[1][1]).contains(&q[1]) {
                 continue;
             }
-            let pose = robot.fk(&q);
-            let j = robot.jacobian(&q);
-            let m: [[f64; 6]; 6] = core::array::from_fn(|r| core::array::from_fn(|c| j[r][c]));
-            let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
-            singular_count += usize::from(singular);
-            let sols = robot.ik_with(&pose, q[6]);
-            let near = robot.ik_near(&pose, &q);
-            check(
-                "Panda",
-                &q,
-                &pose,
-                &sols,
-                near,
-                singular,
-                false,
-                revolute,
-                |x| robot.fk(x),
-                pose_error,
-            );
+            singular_count += usize::from(check_panda(&robot, &q).0);
         }
     }
     eprintln!("Panda, wrist point on axis 1: {singular_count} singular of the 1 500");

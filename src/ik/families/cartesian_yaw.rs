@@ -3,6 +3,7 @@
 //! rotary tool axis; R P P P: the same on a turntable). Task rows x, y, z and the angle
 //! about z: the yaw fixes the revolute joint, then the position is linear in the slides.
 
+use super::position::cramer;
 use crate::ik::geometry::{Geometry, Pose};
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{wrap, Fit};
@@ -29,13 +30,7 @@ pub fn cartesian_yaw<const K: usize>(
     let (at, axes, _) = g.frames(&q);
     let d = pose.p - at.p;
     let slides: [usize; 3] = core::array::from_fn(|k| k + usize::from(k >= r));
-    let [a, b, c] = slides.map(|i| axes[i]);
-    let det = a.dot(&b.cross(&c));
-    let x = [
-        d.dot(&b.cross(&c)) / det,
-        d.dot(&c.cross(&a)) / det,
-        d.dot(&a.cross(&b)) / det,
-    ];
+    let x = cramer(slides.map(|i| axes[i]), &d);
     for (i, xi) in slides.into_iter().zip(x) {
         q[i] = xi;
     }
@@ -44,18 +39,10 @@ pub fn cartesian_yaw<const K: usize>(
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::unit;
     use super::*;
     use crate::ik::geometry::{rot, V3};
     use crate::ik::XorShift64;
-
-    fn unit(rng: &mut XorShift64) -> V3 {
-        V3::new(
-            rng.next_f64() - 0.5,
-            rng.next_f64() - 0.5,
-            rng.next_f64() - 0.5,
-        )
-        .normalize()
-    }
 
     /// Random gantries with the yaw joint first, last, or third (the slide after it
     /// vertical), random points and tool; every pose of their own `fk` solved back to its

@@ -109,6 +109,16 @@ mod tests {
 
     pub(super) type Solver = fn(&Geometry<6>, &Pose, &[f64; 6], WristPair, &mut Candidates<6, 8>);
 
+    /// A random unit vector (the random arms of the families' tests).
+    pub(super) fn unit(rng: &mut crate::ik::XorShift64) -> crate::ik::geometry::V3 {
+        crate::ik::geometry::V3::new(
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+        )
+        .normalize()
+    }
+
     /// What `solver` puts into an empty set of candidates.
     pub(super) fn solved(
         solver: Solver,

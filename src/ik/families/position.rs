@@ -193,17 +193,18 @@ pub fn position_cartesian<const K: usize>(
     _free: &[f64; 3],
     out: &mut Candidates<3, K>,
 ) {
-    let [h1, h2, h3] = g.h;
-    let d = pose.p - g.p_tool;
-    let det = h1.dot(&h2.cross(&h3));
-    out.push(
-        [
-            d.dot(&h2.cross(&h3)) / det,
-            d.dot(&h3.cross(&h1)) / det,
-            d.dot(&h1.cross(&h2)) / det,
-        ],
-        Fit::Exact,
-    );
+    out.push(cramer(g.h, &(pose.p - g.p_tool)), Fit::Exact);
+}
+
+/// `x` with `x1 a + x2 b + x3 c = d` for independent `[a, b, c]` (Cramer's rule).
+#[inline]
+pub(super) fn cramer([a, b, c]: [V3; 3], d: &V3) -> [f64; 3] {
+    let det = a.dot(&b.cross(&c));
+    [
+        d.dot(&b.cross(&c)) / det,
+        d.dot(&c.cross(&a)) / det,
+        d.dot(&a.cross(&b)) / det,
+    ]
 }
 
 /// `(x, y)` with `x a + y b = v` for unit `a ∦ b` and `v` in their plane (the normal
@@ -219,18 +220,10 @@ fn two_slides(a: &V3, b: &V3, v: &V3) -> [f64; 2] {
 /// kinematics written out here from the geometry's definition.
 #[cfg(test)]
 mod tests {
+    use super::super::tests::unit;
     use super::*;
     use crate::ik::geometry::rot;
     use crate::ik::XorShift64;
-
-    fn unit(rng: &mut XorShift64) -> V3 {
-        V3::new(
-            rng.next_f64() - 0.5,
-            rng.next_f64() - 0.5,
-            rng.next_f64() - 0.5,
-        )
-        .normalize()
-    }
 
     fn point(rng: &mut XorShift64) -> V3 {
         V3::new(

@@ -139,13 +139,7 @@ fn refine(
     let size = |m: &[[f64; 2]; 2]| m.iter().flatten().fold(0.0f64, |x, y| x.max(y.abs()));
     let scale = size(a) * size(b);
     for _ in 0..2 {
-        let f = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][0] * t.cos + m[k][1] * t.sin;
-        let df = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][1] * t.cos - m[k][0] * t.sin;
-        let r = [
-            f(a, 0, &u) + f(b, 0, &v) - e[0],
-            f(a, 1, &u) + f(b, 1, &v) - e[1],
-        ];
-        let j = [[df(a, 0, &u), df(b, 0, &v)], [df(a, 1, &u), df(b, 1, &v)]];
+        let (r, j) = (residual(a, b, e, &u, &v), jacobian(a, b, &u, &v));
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         if det.is_nan() || det.abs() <= 1e-6 * scale {
             break;
@@ -171,19 +165,13 @@ fn descend(
     mut u: Angle,
     mut v: Angle,
 ) -> (Angle, Angle) {
-    let f = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][0] * t.cos + m[k][1] * t.sin;
-    let df = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][1] * t.cos - m[k][0] * t.sin;
-    let residual = |u: &Angle, v: &Angle| {
-        [
-            f(a, 0, u) + f(b, 0, v) - e[0],
-            f(a, 1, u) + f(b, 1, v) - e[1],
-        ]
+    let miss = |u: &Angle, v: &Angle| {
+        let r = residual(a, b, e, u, v);
+        r[0].abs().max(r[1].abs())
     };
-    let size = |r: [f64; 2]| r[0].abs().max(r[1].abs());
-    let (mut best, mut best_miss) = ((u, v), size(residual(&u, &v)));
+    let (mut best, mut best_miss) = ((u, v), miss(&u, &v));
     for _ in 0..60 {
-        let r = residual(&u, &v);
-        let j = [[df(a, 0, &u), df(b, 0, &v)], [df(a, 1, &u), df(b, 1, &v)]];
+        let (r, j) = (residual(a, b, e, &u, &v), jacobian(a, b, &u, &v));
         // (JᵀJ + λ) δ = −Jᵀ r
         let jtj = [
             [
@@ -209,14 +197,31 @@ fn descend(
             Angle::new(super::wrap(u.theta + du)),
             Angle::new(super::wrap(v.theta + dv)),
         );
-        let miss = size(residual(&u, &v));
-        if miss < best_miss {
-            (best, best_miss) = ((u, v), miss);
-        } else if miss.is_nan() || miss > 2.0 * best_miss {
+        let m = miss(&u, &v);
+        if m < best_miss {
+            (best, best_miss) = ((u, v), m);
+        } else if m.is_nan() || m > 2.0 * best_miss {
             break;
         }
     }
     best
+}
+
+/// `A u + B v − e`, `u`, `v` the angles' (cos, sin).
+#[inline]
+fn residual(a: &[[f64; 2]; 2], b: &[[f64; 2]; 2], e: &[f64; 2], u: &Angle, v: &Angle) -> [f64; 2] {
+    let f = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][0] * t.cos + m[k][1] * t.sin;
+    [
+        f(a, 0, u) + f(b, 0, v) - e[0],
+        f(a, 1, u) + f(b, 1, v) - e[1],
+    ]
+}
+
+/// The derivatives of [`residual`] by the two angles, row by row.
+#[inline]
+fn jacobian(a: &[[f64; 2]; 2], b: &[[f64; 2]; 2], u: &Angle, v: &Angle) -> [[f64; 2]; 2] {
+    let df = |m: &[[f64; 2]; 2], k: usize, t: &Angle| m[k][1] * t.cos - m[k][0] * t.sin;
+    [[df(a, 0, u), df(b, 0, v)], [df(a, 1, u), df(b, 1, v)]]
 }
 
 /// `t + d` for a small `d` (|d| < 1e-6: `sin d = d`, `cos d = 1 − d²/2` to rounding).
