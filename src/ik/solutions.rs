@@ -267,8 +267,14 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         // subproblem's: only its accuracy is measured.
         let (residual, singular) = match c.fit {
             Fit::Exact => (0.0, 0),
-            Fit::Checked => (check.residual(&q, pose), 0),
-            _ => (check.residual(&q, pose), check.singular(&q)),
+            fit => (
+                check.residual(&q, pose),
+                if fit == Fit::Checked {
+                    0
+                } else {
+                    check.singular(&q)
+                },
+            ),
         };
         // Unchecked branches have residual 0: every subproblem solved exactly.
         let exact = residual <= EXACT_TOLERANCE;

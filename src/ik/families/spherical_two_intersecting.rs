@@ -51,9 +51,17 @@ pub fn spherical_two_intersecting(
         with_wrist(&wrist, q123, wrist_of, fit.and(far), free, out);
     });
     if skew <= SHOULDER_GRAZING {
-        for c in out.as_mut_slice() {
-            c.q = polish(g, c.q, pose);
-        }
+        polish_all(g, pose, out);
+    }
+}
+
+/// Every candidate brought onto `pose` on `fk` (out of line: a grazing shoulder is rare,
+/// and the regular path keeps its code as it was).
+#[cold]
+#[inline(never)]
+fn polish_all(g: &Geometry<6>, pose: &Pose, out: &mut Candidates<6, 8>) {
+    for c in out.as_mut_slice() {
+        c.q = polish(g, c.q, pose);
     }
 }
 
