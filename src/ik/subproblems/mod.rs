@@ -90,6 +90,57 @@ impl Fit {
     }
 }
 
+/// Up to four solutions of a subproblem whose first step is a quartic — the roots of a
+/// trigonometric quadratic ([`QuarticRoots`]), SP6's pairs ([`Sp6Roots`]), SP5's triples
+/// ([`Sp5Roots`]) — each with how it fits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FourRoots<T> {
+    items: [T; 4],
+    fits: [Fit; 4],
+    n: usize,
+}
+
+impl<T: Copy> FourRoots<T> {
+    /// None yet (`fill` only pads the unused slots).
+    pub(super) fn empty(fill: T) -> Self {
+        FourRoots {
+            items: [fill; 4],
+            fits: [Fit::Exact; 4],
+            n: 0,
+        }
+    }
+
+    /// One more (at most four: the quartic's degree).
+    pub(super) fn push(&mut self, x: T, fit: Fit) {
+        self.items[self.n] = x;
+        self.fits[self.n] = fit;
+        self.n += 1;
+    }
+
+    /// The solutions, without their fits.
+    pub fn as_slice(&self) -> &[T] {
+        &self.items[..self.n]
+    }
+
+    /// How many.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// The solutions and their fits.
+    pub fn iter(&self) -> impl Iterator<Item = (T, Fit)> + '_ {
+        self.as_slice()
+            .iter()
+            .copied()
+            .zip(self.fits[..self.n].iter().copied())
+    }
+}
+
 /// Up to two angles, with their sines and cosines.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Roots {

@@ -16,7 +16,7 @@
 //! real part of the pair nearest the real axis is given, flagged [`Fit::LeastSquares`].
 //! The callers check every branch built on these roots against the robot's `fk`.
 
-use super::Fit;
+use super::{Fit, FourRoots};
 use crate::ik::geometry::Angle;
 use crate::math::{acos, fast_atan2 as atan2, sin_cos, sqrt};
 use core::f64::consts::FRAC_1_SQRT_2;
@@ -41,34 +41,11 @@ pub struct TrigQuadratic {
     pub s2: f64,
 }
 
-/// Up to four roots of a [`TrigQuadratic`], with their sines and cosines.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct QuarticRoots {
-    /// The roots; `angles[..n]` are used.
-    pub angles: [Angle; 4],
-    /// How each fits: [`Fit::Exact`] (a simple real root), [`Fit::Double`] (a complex pair
-    /// within rounding of the real axis), [`Fit::LeastSquares`] (no real root: the pair
-    /// nearest to one).
-    pub fits: [Fit; 4],
-    /// How many (0 only for `Q ≡ 0` or non-finite coefficients).
-    pub n: usize,
-}
-
-impl QuarticRoots {
-    fn push(&mut self, a: Angle, fit: Fit) {
-        self.angles[self.n] = a;
-        self.fits[self.n] = fit;
-        self.n += 1;
-    }
-
-    /// The roots and their fits.
-    pub fn iter(&self) -> impl Iterator<Item = (Angle, Fit)> + '_ {
-        self.angles[..self.n]
-            .iter()
-            .copied()
-            .zip(self.fits[..self.n].iter().copied())
-    }
-}
+/// Up to four roots of a [`TrigQuadratic`], with their sines and cosines; each fits as
+/// [`Fit::Exact`] (a simple real root), [`Fit::Double`] (a complex pair within rounding of
+/// the real axis) or [`Fit::LeastSquares`] (no real root: the pair nearest to one). None
+/// only for `Q ≡ 0` or non-finite coefficients.
+pub type QuarticRoots = FourRoots<Angle>;
 
 impl TrigQuadratic {
     /// `Q(θ)` from `cos θ`, `sin θ`.
@@ -91,11 +68,7 @@ impl TrigQuadratic {
 
     /// The real roots (see the module).
     pub fn roots(&self) -> QuarticRoots {
-        let mut out = QuarticRoots {
-            angles: [Angle::new(0.0); 4],
-            fits: [Fit::Exact; 4],
-            n: 0,
-        };
+        let mut out = QuarticRoots::empty(Angle::new(0.0));
         // The sample where |Q| is largest goes to t = ∞ (θ0 = sample − π).
         const UNIT: [(f64, f64); 8] = [
             (1.0, 0.0),
@@ -175,7 +148,7 @@ impl TrigQuadratic {
             out.push(to_angle(t), fit);
             i += 1;
         }
-        if out.n == 0 {
+        if out.is_empty() {
             if let Some((re, _)) = nearest {
                 out.push(to_angle(re), Fit::LeastSquares);
             }
@@ -426,13 +399,13 @@ mod tests {
             if min_gap < 1e-3 {
                 continue;
             }
-            assert_eq!(got.n, 4, "{r:?} {got:?}");
+            assert_eq!(got.len(), 4, "{r:?} {got:?}");
             let want = sorted(r.iter().map(|&t| wrap(t)).collect());
-            let have = sorted(got.angles.iter().map(|a| a.theta).collect());
+            let have = sorted(got.as_slice().iter().map(|a| a.theta).collect());
             for (w, h) in want.iter().zip(&have) {
                 assert!(wrap(w - h).abs() < 1e-9, "{r:?}: {want:?} vs {have:?}");
             }
-            for a in &got.angles[..got.n] {
+            for a in got.as_slice() {
                 assert!((a.sin - a.theta.sin()).abs() < 1e-12);
                 assert!((a.cos - a.theta.cos()).abs() < 1e-12);
             }
@@ -462,9 +435,11 @@ mod tests {
             s2: 0.0,
         };
         let got = q.roots();
-        assert_eq!(got.n, 1);
-        assert_eq!(got.fits[0], Fit::LeastSquares);
-        assert!(wrap(got.angles[0].theta - PI).abs() < 1e-6, "{got:?}");
+        let [(root, fit)] = got.iter().collect::<Vec<_>>()[..] else {
+            panic!("{got:?}");
+        };
+        assert_eq!(fit, Fit::LeastSquares);
+        assert!(wrap(root.theta - PI).abs() < 1e-6, "{got:?}");
     }
 
     #[test]
@@ -476,7 +451,7 @@ mod tests {
             c2: 0.0,
             s2: 0.0,
         };
-        assert_eq!(q.roots().n, 0);
+        assert!(q.roots().is_empty());
     }
 
     #[test]

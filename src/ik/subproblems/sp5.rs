@@ -10,29 +10,12 @@
 
 use super::sp1::sp1_angle;
 use super::sp6::sp6;
-use super::Fit;
+use super::FourRoots;
 use crate::ik::geometry::{Angle, V3};
 
-/// Up to four solutions `[θ1, θ2, θ3]` of SP5, each with how it fits.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sp5Roots {
-    /// The solutions; `angles[..n]` are used.
-    pub angles: [[Angle; 3]; 4],
-    /// How each fits (SP6's root with SP1's fit).
-    pub fits: [Fit; 4],
-    /// How many.
-    pub n: usize,
-}
-
-impl Sp5Roots {
-    /// The solutions and their fits.
-    pub fn iter(&self) -> impl Iterator<Item = ([Angle; 3], Fit)> + '_ {
-        self.angles[..self.n]
-            .iter()
-            .copied()
-            .zip(self.fits[..self.n].iter().copied())
-    }
-}
+/// Up to four solutions `[θ1, θ2, θ3]` of SP5, each with how it fits (SP6's root with
+/// SP1's fit).
+pub type Sp5Roots = FourRoots<[Angle; 3]>;
 
 /// **SP5** — `p0 + rot(k1, θ1) p1 = rot(k2, θ2) (p2 + rot(k3, θ3) p3)`; `free` is θ2 where
 /// both sides lie on `k2` (it turns nothing then).
@@ -48,16 +31,10 @@ pub fn sp5(p0: &V3, k1: &V3, p1: &V3, k2: &V3, p2: &V3, k3: &V3, p3: &V3, free: 
         [*p1, *p3, *p1, *p3],
         d,
     );
-    let mut out = Sp5Roots {
-        angles: [[Angle::new(0.0); 3]; 4],
-        fits: [Fit::Exact; 4],
-        n: 0,
-    };
+    let mut out = Sp5Roots::empty([Angle::new(0.0); 3]);
     for ((t1, t3), fit) in pairs.iter() {
         let (t2, f2) = sp1_angle(&(p2 + t3.rot(k3) * p3), &(p0 + t1.rot(k1) * p1), k2, free);
-        out.angles[out.n] = [t1, t2, t3];
-        out.fits[out.n] = fit.and(f2);
-        out.n += 1;
+        out.push([t1, t2, t3], fit.and(f2));
     }
     out
 }

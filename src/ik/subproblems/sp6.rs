@@ -14,30 +14,12 @@
 
 use super::quartic::TrigQuadratic;
 use super::sp4::Sp4Circle;
-use super::Fit;
+use super::{Fit, FourRoots};
 use crate::ik::geometry::{Angle, V3};
 
 /// Up to four solutions `(θ1, θ2)` of SP6, each with how it fits (see
 /// [`QuarticRoots`](super::QuarticRoots)).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sp6Roots {
-    /// The solutions; `pairs[..n]` are used.
-    pub pairs: [(Angle, Angle); 4],
-    /// How each fits.
-    pub fits: [Fit; 4],
-    /// How many.
-    pub n: usize,
-}
-
-impl Sp6Roots {
-    /// The solutions and their fits.
-    pub fn iter(&self) -> impl Iterator<Item = ((Angle, Angle), Fit)> + '_ {
-        self.pairs[..self.n]
-            .iter()
-            .copied()
-            .zip(self.fits[..self.n].iter().copied())
-    }
-}
+pub type Sp6Roots = FourRoots<(Angle, Angle)>;
 
 /// **SP6** — `(θ1, θ2)` with `h1ᵀ rot(k1, θ1) p1 + h2ᵀ rot(k2, θ2) p2 = d1` and
 /// `h3ᵀ rot(k3, θ1) p3 + h4ᵀ rot(k4, θ2) p4 = d2`: up to four solutions.
@@ -57,11 +39,7 @@ pub fn sp6(h: [V3; 4], k: [V3; 4], p: [V3; 4], d: [f64; 2]) -> Sp6Roots {
 /// (`a`, `b` row by row).
 pub fn two_sinusoids(a: [[f64; 2]; 2], b: [[f64; 2]; 2], e: [f64; 2]) -> Sp6Roots {
     let det = |m: &[[f64; 2]; 2]| m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    let mut out = Sp6Roots {
-        pairs: [(Angle::new(0.0), Angle::new(0.0)); 4],
-        fits: [Fit::Exact; 4],
-        n: 0,
-    };
+    let mut out = Sp6Roots::empty((Angle::new(0.0), Angle::new(0.0)));
     // Row scaling multiplies both determinants alike: compare them as they are.
     let swap = det(&b).abs() > det(&a).abs();
     let (a, b) = if swap { (b, a) } else { (a, b) };
@@ -108,7 +86,8 @@ pub fn two_sinusoids(a: [[f64; 2]; 2], b: [[f64; 2]; 2], e: [f64; 2]) -> Sp6Root
                 let (u, v) = descend(&a, &b, &e, u, v);
                 let near = |x: &Angle, y: &Angle| super::wrap(x.theta - y.theta).abs() <= 1e-6;
                 let (x, y) = if swap { (v, u) } else { (u, v) };
-                if out.pairs[..out.n]
+                if out
+                    .as_slice()
                     .iter()
                     .any(|(p, q)| near(p, &x) && near(q, &y))
                 {
@@ -117,9 +96,7 @@ pub fn two_sinusoids(a: [[f64; 2]; 2], b: [[f64; 2]; 2], e: [f64; 2]) -> Sp6Root
                 (u, v, fit.and(Fit::Double))
             }
         };
-        out.pairs[out.n] = if swap { (v, u) } else { (u, v) };
-        out.fits[out.n] = fit;
-        out.n += 1;
+        out.push(if swap { (v, u) } else { (u, v) }, fit);
     }
     out
 }
@@ -267,7 +244,7 @@ mod tests {
                 h[2].dot(&(rot(&k[2], t1) * p[2])) + h[3].dot(&(rot(&k[3], t2) * p[3])),
             ];
             let r = sp6(h, k, p, d);
-            assert!(r.n >= 1);
+            assert!(!r.is_empty());
             for ((a1, a2), _) in r.iter() {
                 let e1 = h[0].dot(&(a1.rot(&k[0]) * p[0])) + h[1].dot(&(a2.rot(&k[1]) * p[1]));
                 let e2 = h[2].dot(&(a1.rot(&k[2]) * p[2])) + h[3].dot(&(a2.rot(&k[3]) * p[3]));
