@@ -288,7 +288,7 @@ kinegen::kinematics! {
 /// 2 000 configurations drawn in the limits, fixed seed).
 #[test]
 fn f32_widowx250_ik_meets_its_own_fk() {
-    let robot = WidowX250F32::default();
+    let robot = WidowX250F32;
     let mut rng = XorShift64::new(250);
     let cases = 2_000;
     let mut missed = 0;
