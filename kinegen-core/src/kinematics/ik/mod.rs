@@ -1,9 +1,12 @@
 //! Closed-form inverse kinematics, planned at expansion time: the joint axes at `q = 0`
-//! classified exactly ([`axes`]), the family and its derivation chosen ([`family`]), and
-//! the zero-configuration geometry the generated code hands to the runtime solver.
+//! classified exactly ([`axes`]), the family and its derivation chosen ([`family`]; the
+//! arms with fewer joints in `fewer.rs`), the plan it gives ([`mod@plan`]), and the
+//! zero-configuration geometry the generated code hands to the runtime solver.
 
 pub mod axes;
 pub mod family;
+mod fewer;
+pub mod plan;
 
 use crate::algebra::graph::Id;
 use crate::chain::Chain;
