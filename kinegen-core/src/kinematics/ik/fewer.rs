@@ -52,13 +52,7 @@ pub(super) fn planar(
         revolute,
         prismatic: prismatic.first().copied(),
     };
-    let m = Match {
-        family,
-        steps,
-        half_turn: false,
-        reversed: false,
-    };
-    Ok(finish(m, None, Vec::new(), None))
+    Ok(plain(family, steps))
 }
 
 /// Three joints placing the tool point (task rows x, y, z): the cases of [`Position`],
@@ -153,13 +147,7 @@ pub(super) fn position(
             )
         }
     };
-    let m = Match {
-        family: Family::Position(case),
-        steps,
-        half_turn: false,
-        reversed: false,
-    };
-    Ok(finish(m, None, Vec::new(), None))
+    Ok(plain(Family::Position(case), steps))
 }
 
 /// Four joints, task rows x, y, z, rz, not all along z: [`Family::CartesianYaw`], decided
@@ -219,13 +207,7 @@ pub(super) fn cartesian_yaw(
             r + 1
         ),
     ];
-    let m = Match {
-        family: Family::CartesianYaw { revolute: r },
-        steps,
-        half_turn: false,
-        reversed: false,
-    };
-    Ok(finish(m, None, Vec::new(), None))
+    Ok(plain(Family::CartesianYaw { revolute: r }, steps))
 }
 
 /// Four or five revolute joints, the whole pose: [`Family::PitchRoll`], decided exactly at
@@ -288,13 +270,7 @@ pub(super) fn pitch_roll(
         "q3 — SP3: ‖p23 + rot(h3, q3) p34‖ = ‖w‖, w = rot(−h1, q1) (p − p1) − p12 − rot(h2, θ) (pT − p4) (two roots)".to_string(),
         "q2 — SP1: rot(h2, q2) (p23 + R3 p34) = w; q4 = ±(θ − q2 ∓ q3)".into(),
     ]);
-    let m = Match {
-        family: Family::PitchRoll { roll },
-        steps,
-        half_turn: false,
-        reversed: false,
-    };
-    Ok(finish(m, None, Vec::new(), None))
+    Ok(plain(Family::PitchRoll { roll }, steps))
 }
 
 fn steps_planar(revolute: &[usize], prismatic: Option<usize>) -> Vec<String> {
@@ -326,4 +302,16 @@ fn steps_planar(revolute: &[usize], prismatic: Option<usize>) -> Vec<String> {
         s.push(format!("q{} from z (it moves along z)", p + 1));
     }
     s
+}
+
+/// The plan of a family matched on the chain as it is (no joint locked, read from the
+/// base, no wrist).
+fn plain(family: Family, steps: Vec<String>) -> IkPlan {
+    let m = Match {
+        family,
+        steps,
+        half_turn: false,
+        reversed: false,
+    };
+    finish(m, None, Vec::new(), None)
 }
