@@ -229,19 +229,11 @@ fn arm_angle_items(n: usize, steps: &[String], scalar: Scalar) -> Vec<Item> {
     };
     let f = scalar_name(scalar);
     // The f32 robot's inputs widened, its pose orthonormalized, its limits in f64.
-    let (widen, target, limits, to_f32) = match scalar {
-        Scalar::F64 => (
-            vec![],
-            "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);",
-            "&Self::LIMITS",
-            "",
-        ),
-        Scalar::F32 => (
-            vec!["let pose: &[[f64; 4]; 4] = &pose.map(|row| row.map(f64::from));".to_string()],
-            "let target = ::kinegen::ik::solutions::orthonormalized(&::kinegen::ik::geometry::Pose::from_matrix(pose));",
-            "&Self::LIMITS.map(|l| l.map(f64::from))",
-            ".to_f32()",
-        ),
+    let widen: Vec<String> = widened_pose(scalar).map(String::from).into_iter().collect();
+    let target = target_line(scalar);
+    let (limits, to_f32) = match scalar {
+        Scalar::F64 => ("&Self::LIMITS", ""),
+        Scalar::F32 => ("&Self::LIMITS.map(|l| l.map(f64::from))", ".to_f32()"),
     };
     let mut ik_lets = widen.clone();
     if scalar == Scalar::F32 {
@@ -256,9 +248,9 @@ fn arm_angle_items(n: usize, steps: &[String], scalar: Scalar) -> Vec<Item> {
     ]);
     let mut interval_lets = widen;
     interval_lets.push(target.to_string());
-    let (q_arg, q_value, angle_out) = match scalar {
-        Scalar::F64 => ("q", "q", ""),
-        Scalar::F32 => ("q", "&q.map(f64::from)", ".map(|psi| psi as f32)"),
+    let (q_value, angle_out) = match scalar {
+        Scalar::F64 => ("q", ""),
+        Scalar::F32 => ("&q.map(f64::from)", ".map(|psi| psi as f32)"),
     };
     vec![
         Item::Method(Method {
@@ -292,7 +284,7 @@ fn arm_angle_items(n: usize, steps: &[String], scalar: Scalar) -> Vec<Item> {
             rates: false,
             ret: format!("::core::option::Option<{f}>"),
             body: custom(
-                &format!("{q_arg}: &[{f}; {n}]"),
+                &format!("q: &[{f}; {n}]"),
                 vec![],
                 format!("::kinegen::ik::families::arm_angle(&self.ik_geometry(), {q_value}){angle_out}"),
             ),
@@ -322,6 +314,23 @@ fn arm_angle_items(n: usize, steps: &[String], scalar: Scalar) -> Vec<Item> {
     ]
 }
 
+/// An f32 robot's method widens its `pose` to f64 first (`None` for an f64 robot).
+fn widened_pose(scalar: Scalar) -> Option<&'static str> {
+    match scalar {
+        Scalar::F64 => None,
+        Scalar::F32 => Some("let pose: &[[f64; 4]; 4] = &pose.map(|row| row.map(f64::from));"),
+    }
+}
+
+/// The line making `target`, the pose the solver works on, from `pose` (f64 by then).
+fn target_line(scalar: Scalar) -> &'static str {
+    match scalar {
+        Scalar::F64 => "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);",
+        // The f32 rotation is orthonormal to f32 rounding only: solve for the nearest rotation.
+        Scalar::F32 => "let target = ::kinegen::ik::solutions::orthonormalized(&::kinegen::ik::geometry::Pose::from_matrix(pose));",
+    }
+}
+
 fn scalar_name(scalar: Scalar) -> &'static str {
     match scalar {
         Scalar::F64 => "f64",
@@ -336,21 +345,18 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     let solver = format!("::kinegen::ik::families::{}", family.solver());
     let f = scalar_name(chain.scalar);
     // An f32 robot solves in f64: its inputs and limits widened first.
-    let mut lets = match chain.scalar {
-        Scalar::F64 => vec![],
-        Scalar::F32 => vec![
-            "let pose: &[[f64; 4]; 4] = &pose.map(|row| row.map(f64::from));".to_string(),
-            format!("let free: &[f64; {n}] = &free.map(f64::from);"),
-            format!("let limits: [[f64; 2]; {n}] = Self::LIMITS.map(|l| l.map(f64::from));"),
-        ],
-    };
-    let target = match chain.scalar {
-        Scalar::F64 => "let target = ::kinegen::ik::geometry::Pose::from_matrix(pose);",
-        // The f32 rotation is orthonormal to f32 rounding only: solve for the nearest rotation.
-        Scalar::F32 => "let target = ::kinegen::ik::solutions::orthonormalized(&::kinegen::ik::geometry::Pose::from_matrix(pose));",
-    };
+    let mut lets: Vec<String> = widened_pose(chain.scalar)
+        .map(String::from)
+        .into_iter()
+        .collect();
+    if chain.scalar == Scalar::F32 {
+        lets.push(format!("let free: &[f64; {n}] = &free.map(f64::from);"));
+        lets.push(format!(
+            "let limits: [[f64; 2]; {n}] = Self::LIMITS.map(|l| l.map(f64::from));"
+        ));
+    }
     lets.extend([
-        target.to_string(),
+        target_line(chain.scalar).to_string(),
         "if !target.is_finite() || free.iter().any(|x| !x.is_finite()) { return ::kinegen::ik::IkSolutions::empty(); }".into(),
         "let g = self.ik_geometry();".into(),
     ]);
