@@ -3,6 +3,7 @@
 //! rotary tool axis; R P P P: the same on a turntable). Task rows x, y, z and the angle
 //! about z: the yaw fixes the revolute joint, then the position is linear in the slides.
 
+use super::planar::yaw;
 use super::position::cramer;
 use crate::ik::geometry::{Geometry, Pose};
 use crate::ik::solutions::Candidates;
@@ -24,9 +25,8 @@ pub fn cartesian_yaw<const K: usize>(
     _free: &[f64; 4],
     out: &mut Candidates<4, K>,
 ) {
-    let angle = |m: &crate::ik::geometry::M3| crate::math::atan2(m[(1, 0)], m[(0, 0)]);
     let mut q = [0.0; 4];
-    q[r] = wrap(g.h[r].z.signum() * (angle(&pose.r) - angle(&g.r_tool)));
+    q[r] = wrap(g.h[r].z.signum() * yaw(g, pose));
     let (at, axes, _) = g.frames(&q);
     let d = pose.p - at.p;
     let slides: [usize; 3] = core::array::from_fn(|k| k + usize::from(k >= r));

@@ -29,8 +29,7 @@ pub fn planar<const N: usize>(
     let z = V3::z();
     let sign = |i: usize| g.h[i].z.signum();
     let (a, b) = (revolute[0], revolute[1]);
-    let angle = |r: &M3| crate::math::atan2(r[(1, 0)], r[(0, 0)]);
-    let psi = angle(&pose.r) - angle(&g.r_tool);
+    let psi = yaw(g, pose);
     let (w, end) = match revolute.get(2) {
         Some(&c) => (pose.p - rot(&z, psi) * (g.p_tool - g.p[c]), g.p[c]),
         None => (pose.p, g.p_tool),
@@ -52,4 +51,12 @@ pub fn planar<const N: usize>(
         }
         out.push(q, tb.fit.and(fa));
     }
+}
+
+/// `ψ = φ − φ0`: the tool's angle about world z at `pose` (its x axis' azimuth, as the
+/// task row `rz` measures it), minus its angle at `q = 0`.
+#[inline]
+pub(super) fn yaw<const N: usize>(g: &Geometry<N>, pose: &Pose) -> f64 {
+    let angle = |r: &M3| crate::math::atan2(r[(1, 0)], r[(0, 0)]);
+    angle(&pose.r) - angle(&g.r_tool)
 }
