@@ -305,6 +305,172 @@ self_test!(stanford, Stanford, 1969);
 self_test!(kuka_kr6_r900, KukaKr6R900, 6900);
 self_test!(abb_irb120, AbbIrb120, 120);
 self_test!(abb_irb140, AbbIrb140, 140);
+/// What the general 6R missed over a self-test: regular poses whose generating
+/// configuration is not among the solutions; singular ones with no exact branch, with no
+/// branch flagged, whose `ik_near` moved.
+#[derive(Debug, Default, PartialEq, PartialOrd)]
+struct Missed {
+    regular: usize,
+    singular: [usize; 3],
+}
+
+/// One pose of the general 6R's self-test: every exact solution meets the pose, no two
+/// are the same configuration (always asserted); what it misses is tallied.
+#[allow(clippy::too_many_arguments)]
+fn general_check<const N: usize, const K: usize>(
+    name: &str,
+    q: &[f64; N],
+    pose: &[[f64; 4]; 4],
+    sols: &IkSolutions<N, K>,
+    near: Option<[f64; N]>,
+    singular: bool,
+    revolute: &[bool; N],
+    fk: impl Fn(&[f64; N]) -> [[f64; 4]; 4],
+    missed: &mut Missed,
+) {
+    for b in sols.exact() {
+        let e = pose_error(&fk(&b.q), pose);
+        assert!(
+            e <= 1e-10,
+            "{name}: exact solution {:?} of q = {q:?} is {e:e} off",
+            b.q
+        );
+    }
+    for (i, a) in sols.iter().enumerate() {
+        for b in &sols.as_slice()[i + 1..] {
+            assert!(
+                joint_gap(&a.q, &b.q, revolute) > 1e-9,
+                "{name}: duplicate solutions for {q:?}"
+            );
+        }
+    }
+    if !singular {
+        let found = sols.exact().any(|b| joint_gap(&b.q, q, revolute) <= 1e-7);
+        missed.regular += usize::from(!found);
+        return;
+    }
+    missed.singular[0] += usize::from(sols.exact().next().is_none());
+    missed.singular[1] += usize::from(!sols.iter().any(|b| b.at_singularity));
+    missed.singular[2] += usize::from(near.is_none_or(|n| joint_gap(&n, q, revolute) > 1e-7));
+}
+
+/// The general 6R's self-test (Raghavan–Roth's elimination; no family of subproblems
+/// fits these arms), IKFast's as in [`check`], with what it misses tallied and held to
+/// `$most` — the counts measured when the solver was written: a regression bound, and
+/// the gap it leaves said plainly. The misses sit at special poses (joints snapped to
+/// right angles): there every form of the elimination degenerates or nearly so, and the
+/// solver falls back on poses moved off it, solved and tracked back by Newton steps,
+/// which can land two branches on one solution. At singular poses Newton converges only
+/// linearly, so a branch may stop ~1e-7 from the singular configuration.
+macro_rules! general_self_test {
+    ($test:ident, $ty:ty, $seed:expr, $most:expr) => {
+        #[test]
+        fn $test() {
+            let robot = <$ty>::default();
+            let mut rng = XorShift64::new($seed);
+            let mut tally = Tally::default();
+            let mut missed = Missed::default();
+            for _ in 0..CASES {
+                let q = configuration(&mut rng, &<$ty>::LIMITS, &<$ty>::REVOLUTE);
+                let pose = robot.fk(&q);
+                let singular = robot
+                    .singular_factors(&q)
+                    .iter()
+                    .any(|f: &f64| f.abs() <= SINGULAR);
+                let sols = robot.ik(&pose);
+                let near = robot.ik_near(&pose, &q);
+                general_check(
+                    stringify!($ty),
+                    &q,
+                    &pose,
+                    &sols,
+                    near,
+                    singular,
+                    &<$ty>::REVOLUTE,
+                    |x| robot.fk(x),
+                    &mut missed,
+                );
+                tally.add(singular, &sols);
+            }
+            eprintln!("{}: {tally:?}, missed {missed:?}", stringify!($ty));
+            let most: Missed = $most;
+            assert!(
+                missed.regular <= most.regular
+                    && (0..3).all(|i| missed.singular[i] <= most.singular[i]),
+                "{}: missed {missed:?}, more than {most:?}",
+                stringify!($ty)
+            );
+        }
+    };
+}
+general_self_test!(
+    kinova_jaco,
+    KinovaJaco,
+    2013,
+    Missed {
+        regular: 0,
+        singular: [0, 0, 0]
+    }
+);
+general_self_test!(
+    fanuc_crx10ial,
+    FanucCrx10iaL,
+    10102,
+    Missed {
+        regular: 11,
+        singular: [10, 10, 0]
+    }
+);
+
+/// The Gen3 with joint 7 locked at the generating value: the general 6R on the other six
+/// (as [`general_self_test`]; singular: the 6 × 6 Jacobian without joint 7's column).
+#[test]
+fn kinova_gen3_joint_7_free() {
+    let robot = KinovaGen3;
+    let k = KinovaGen3::IK_FREE - 1;
+    let mut rng = XorShift64::new(3);
+    let mut tally = Tally::default();
+    let mut missed = Missed::default();
+    for _ in 0..CASES {
+        let q = configuration(&mut rng, &KinovaGen3::LIMITS, &KinovaGen3::REVOLUTE);
+        let pose = robot.fk(&q);
+        let j = robot.jacobian(&q);
+        let mut m = [[0.0; 6]; 6];
+        for r in 0..6 {
+            for (c, i) in (0..7).filter(|&i| i != k).enumerate() {
+                m[r][c] = j[r][i];
+            }
+        }
+        let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+        let sols = robot.ik_with(&pose, q[k]);
+        let near = robot.ik_near(&pose, &q);
+        general_check(
+            "KinovaGen3",
+            &q,
+            &pose,
+            &sols,
+            near,
+            singular,
+            &KinovaGen3::REVOLUTE,
+            |x| robot.fk(x),
+            &mut missed,
+        );
+        assert!(
+            sols.iter().all(|b| b.q[k] == q[k]),
+            "the free joint stays locked"
+        );
+        tally.add(singular, &sols);
+    }
+    eprintln!("KinovaGen3 (joint 7 free): {tally:?}, missed {missed:?}");
+    let most = Missed {
+        regular: 11,
+        singular: [0, 0, 0],
+    };
+    assert!(
+        missed.regular <= most.regular && (0..3).all(|i| missed.singular[i] <= most.singular[i]),
+        "KinovaGen3: missed {missed:?}, more than {most:?}"
+    );
+}
 self_test!(planar_rr, PlanarRr, 22, task);
 self_test!(planar_rrr, PlanarRrr, 333, task);
 self_test!(scara, Scara, 600, task);

@@ -84,9 +84,9 @@ kinegen::kinematics! {
 kinegen::kinematics! {
     /// Kinova Jaco (6 joints, 60° wrist; joint 1 flipped, as in RTB's model).
     ///
-    /// No closed-form IK: the 60° wrist is not spherical and no three axes are parallel
-    /// (the compile-time note names them); the numerical solvers of `kinegen::ik` serve it.
-    #[allow(deprecated)]
+    /// Its 60° wrist is not spherical and no three axes are parallel, read either way: no
+    /// family of subproblems fits, and its `ik` is the general 6R (Raghavan–Roth's
+    /// elimination, solved as an eigenproblem at run time; `IK_STEPS`).
     pub struct KinovaJaco = "kinova_jaco.toml";
 }
 kinegen::kinematics! {
@@ -117,6 +117,18 @@ kinegen::kinematics! {
     pub struct Ur5eWristOffset = "ur5e_wrist_offset.toml";
 }
 kinegen::kinematics! {
+    /// FANUC CRX-10iA/L from its URDF (`urdf/crx10ial.urdf`): axes 2 ∥ 3 and 4 ∥ 6 with
+    /// joint 5 150 mm off axis 4 — no family of subproblems fits, read either way; its
+    /// `ik` is the general 6R (`IK_STEPS`).
+    pub struct FanucCrx10iaL = "fanuc_crx10ial.toml";
+}
+kinegen::kinematics! {
+    /// Kinova Gen3, 7 joints, from its URDF (`urdf/kinova_gen3.urdf`): axes offset by
+    /// 11.75 mm (shoulder), 12.75 mm (elbow) and 0.35 mm (wrist), so no joint's locking
+    /// leaves a family of subproblems; `ik_with` locks joint 7 and solves the general 6R.
+    pub struct KinovaGen3 = "kinova_gen3.toml";
+}
+kinegen::kinematics! {
     /// Interbotix WidowX 250, 5 joints, from its URDF (`urdf/wx250.urdf`): closed-form IK
     /// for the poses it reaches — the tool point, the approach in the arm's plane and the
     /// roll (`IK_STEPS`); a pose off that set gets its position and the nearest approach,
@@ -141,6 +153,16 @@ pub const TABLES: &[(&str, &str, &str)] = &[
         "cylindrical_rpp",
         "robots/cylindrical_rpp.toml",
         include_str!("../cylindrical_rpp.toml"),
+    ),
+    (
+        "fanuc_crx10ial",
+        "robots/fanuc_crx10ial.toml",
+        include_str!("../fanuc_crx10ial.toml"),
+    ),
+    (
+        "kinova_gen3",
+        "robots/kinova_gen3.toml",
+        include_str!("../kinova_gen3.toml"),
     ),
     (
         "kinova_jaco",
@@ -220,9 +242,19 @@ pub const URDFS: &[(&str, &str, &str)] = &[
         include_str!("../urdf/cobra600.urdf"),
     ),
     (
+        "urdf/crx10ial.urdf",
+        "robots/urdf/crx10ial.urdf",
+        include_str!("../urdf/crx10ial.urdf"),
+    ),
+    (
         "urdf/kinova_j2s6s.urdf",
         "robots/urdf/kinova_j2s6s.urdf",
         include_str!("../urdf/kinova_j2s6s.urdf"),
+    ),
+    (
+        "urdf/kinova_gen3.urdf",
+        "robots/urdf/kinova_gen3.urdf",
+        include_str!("../urdf/kinova_gen3.urdf"),
     ),
     (
         "urdf/kuka_kr6_r900.urdf",

@@ -238,6 +238,9 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
             _ => Err("planar IK is for 2 to 4 joints"),
         };
     }
+    if pr.plan.solver == "general_6r" {
+        return general(pr, &pose, checks);
+    }
     match (n, pr.plan.locked) {
         (6, None) => {
             let g = geometry::<6>(pr.geometry);
@@ -255,6 +258,33 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
             Ok(finished(&c, pr, checks))
         }
         _ => Err("closed-form IK is for 6 joints, or 7 with one locked"),
+    }
+}
+
+/// The general 6R (six joints, or seven with one locked): up to 16 solutions.
+fn general(pr: &DynProblem, pose: &Pose, checks: &Checks) -> Result<Vec<DynBranch>, &'static str> {
+    // One run-time robot per process call: the hint only saves time within it.
+    let hint = families::Hint::new();
+    let n = pr.geometry.h.len();
+    match (n, pr.plan.locked) {
+        (6, None) => {
+            let g = geometry::<6>(pr.geometry);
+            let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
+            let mut c = Candidates::<6, 16>::default();
+            families::general_6r(&g, pose, &free, &hint, &mut c);
+            Ok(finished(&c, pr, checks))
+        }
+        (7, Some(k)) => {
+            let g7 = geometry::<7>(pr.geometry);
+            let g: Geometry<6> = g7.lock(k, pr.q_locked);
+            let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
+            let free: [f64; 6] = without(&free7, k);
+            let mut c6 = Candidates::<6, 16>::default();
+            families::general_6r(&g, pose, &free, &hint, &mut c6);
+            let c = with_locked::<6, 7, 16>(&c6, k, pr.q_locked);
+            Ok(finished(&c, pr, checks))
+        }
+        _ => Err("the general 6R is for 6 joints, or 7 with one locked"),
     }
 }
 

@@ -46,8 +46,13 @@ pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
 /// The pose error `[p − p(q); log(R R(q)ᵀ)]` and the world-frame geometric Jacobian at
 /// `q`.
 fn error_and_jacobian(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> (Vector6<f64>, Matrix6<f64>) {
+    let (at, j) = jacobian(g, q);
+    (pose_error(&pose.p, &pose.r, &at.p, &at.r), j)
+}
+
+/// The tool pose and the world-frame geometric Jacobian at `q`.
+fn jacobian(g: &Geometry<6>, q: &[f64; 6]) -> (Pose, Matrix6<f64>) {
     let (at, axes, points) = g.frames(q);
-    let e = pose_error(&pose.p, &pose.r, &at.p, &at.r);
     let mut j = Matrix6::zeros();
     for i in 0..6 {
         let (lin, ang) = if g.prismatic[i] {
@@ -60,7 +65,20 @@ fn error_and_jacobian(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> (Vector6<f6
             j[(k + 3, i)] = ang[k];
         }
     }
-    (e, j)
+    (at, j)
+}
+
+/// How far from singular the arm is at `q`: `|det J|` over the product of the columns'
+/// norms (Hadamard's ratio: 1 for orthogonal columns, 0 at a singularity), for solvers
+/// whose branches are not built by subproblems that see the singularity.
+pub fn hadamard_ratio(g: &Geometry<6>, q: &[f64; 6]) -> f64 {
+    let (_, j) = jacobian(g, q);
+    let norms: f64 = j.column_iter().map(|c| c.norm()).product();
+    if norms > 0.0 {
+        j.determinant().abs() / norms
+    } else {
+        0.0
+    }
 }
 
 /// `q` as it is where its fit is [`Fit::Exact`] or [`Fit::Checked`] (every root it was

@@ -360,6 +360,13 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
         "if !target.is_finite() || free.iter().any(|x| !x.is_finite()) { return ::kinegen::ik::IkSolutions::empty(); }".into(),
         "let g = self.ik_geometry();".into(),
     ]);
+    if *family == Family::General6r {
+        // Which of the elimination's forms is regular for this arm, found on the first call.
+        lets.push(
+            "static HINT: ::kinegen::ik::families::Hint = ::kinegen::ik::families::Hint::new();"
+                .into(),
+        );
+    }
     // The solver fills the candidates in place: returned by value they were copied once
     // more (about 450 bytes) on every call.
     let reversed = model.plan.reversed;
@@ -383,6 +390,7 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             Family::Position(_) | Family::PitchRoll { .. } => {
                 format!("&{g_}, {target}, {free_}")
             }
+            Family::General6r => format!("&{g_}, {target}, {free_}, &HINT"),
             _ => {
                 let pair = if model.plan.wrist_half_turn {
                     "HalfTurn"

@@ -31,6 +31,7 @@ use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
 
 mod cartesian_yaw;
+mod general_6r;
 mod pitch_roll;
 mod planar;
 mod position;
@@ -43,6 +44,7 @@ mod ur;
 mod wrist;
 
 pub use cartesian_yaw::cartesian_yaw;
+pub use general_6r::{general_6r, Formulation, Hint, FORMULATIONS};
 pub use pitch_roll::pitch_roll;
 pub use planar::planar;
 pub use position::{

@@ -100,11 +100,30 @@ pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPl
 /// tool (the labels reversed; the relations tested do not depend on the direction), else
 /// the quartic ones the same way.
 fn either_way(axes: &Axes, kinds: &[JointKind], labels: &[usize]) -> Result<Match, String> {
-    match one_tier(axes, kinds, labels, six) {
-        Ok(m) => Ok(m),
-        Err(quadratic) => one_tier(axes, kinds, labels, six_quartic)
-            .map_err(|quartic| format!("{quadratic}; quartic families: {quartic}")),
+    let quadratic = match one_tier(axes, kinds, labels, six) {
+        Ok(m) => return Ok(m),
+        Err(e) => e,
+    };
+    let quartic = match one_tier(axes, kinds, labels, six_quartic) {
+        Ok(m) => return Ok(m),
+        Err(e) => e,
+    };
+    if labels.iter().any(|&i| kinds[i] != JointKind::Revolute) {
+        return Err(format!(
+            "{quadratic}; quartic families: {quartic}; general 6R: a joint is prismatic"
+        ));
     }
+    let j = |i: usize| labels[i] + 1;
+    let mut steps = vec![format!(
+        "no family of subproblems fits, read either way (quadratics: {quadratic}; quartic families: {quartic}): the general 6R, whose elimination runs on the geometry's numbers at run time"
+    )];
+    steps.extend(steps_general(j));
+    Ok(Match {
+        family: Family::General6r,
+        steps,
+        half_turn: false,
+        reversed: false,
+    })
 }
 
 /// What [`six`] and [`six_quartic`] return for some labels.
@@ -355,31 +374,26 @@ fn seven(
         let v: Vec<String> = ks.iter().map(|k| (k + 1).to_string()).collect();
         v.join(", ")
     };
-    let quartic = |i: usize| tried[i].1.as_ref().is_ok_and(|m| m.family.quartic());
+    let tier = |i: usize| tried[i].1.as_ref().map_or(u8::MAX, |m| m.family.tier());
     let others = |k: usize| {
-        let rest = |q: bool| -> Vec<usize> {
+        let rest = |t: u8| -> Vec<usize> {
             lockable
                 .iter()
                 .copied()
-                .filter(|&i| i != k && quartic(i) == q)
+                .filter(|&i| i != k && tier(i) == t)
                 .collect()
         };
         let joints = |v: &[usize]| if v.len() == 1 { "joint" } else { "joints" };
-        let (quadratic, quartics) = (rest(false), rest(true));
         let mut parts = Vec::new();
-        if !quadratic.is_empty() {
-            parts.push(format!(
-                "{} {} would also do",
-                joints(&quadratic),
-                list(&quadratic)
-            ));
-        }
-        if !quartics.is_empty() {
-            parts.push(format!(
-                "{} {} with a quartic family",
-                joints(&quartics),
-                list(&quartics)
-            ));
+        for (t, how) in [
+            (0, " would also do"),
+            (1, " with a quartic family"),
+            (2, " with the general 6R"),
+        ] {
+            let ks = rest(t);
+            if !ks.is_empty() {
+                parts.push(format!("{} {}{how}", joints(&ks), list(&ks)));
+            }
         }
         if parts.is_empty() {
             String::new()
@@ -407,16 +421,10 @@ fn seven(
             }
         },
         None => {
-            // A family of quadratics at any lock before a quartic one.
-            let fits = |k: usize, quartic: bool| {
-                tried[k]
-                    .1
-                    .as_ref()
-                    .is_ok_and(|m| m.family.quartic() == quartic)
-            };
-            let first =
-                |quartic: bool| FREE_JOINT_ORDER.iter().copied().find(|&k| fits(k, quartic));
-            let Some(k) = first(false).or_else(|| first(true)) else {
+            // A family of quadratics at any lock before a quartic one, a quartic one before
+            // the general 6R.
+            let first = |t: u8| FREE_JOINT_ORDER.iter().copied().find(|&k| tier(k) == t);
+            let Some(k) = first(0).or_else(|| first(1)).or_else(|| first(2)) else {
                 let why: Vec<String> = FREE_JOINT_ORDER
                     .iter()
                     .map(|&k| {
@@ -429,24 +437,26 @@ fn seven(
                     .collect();
                 return Err(why.join("; "));
             };
-            let quartic = tried[k].1.as_ref().is_ok_and(|m| m.family.quartic());
             let reason = match k {
                 6 => "the last joint only turns the tool, so the six others' geometry is the same for every value".to_string(),
                 0 => format!(
                     "the first joint only turns the base, so the six others' geometry is the same for every value (locking joint 7 leaves {})",
                     match &tried[6].1 {
+                        Ok(m) if m.family.tier() == 2 => "only the general 6R".to_string(),
                         Ok(_) => "only a quartic family".to_string(),
                         Err(e) => format!("no family: {e}"),
                     }
                 ),
-                _ => "the first of joints 3, 4, 5, 2, 6 whose locking leaves a family; joints 7 and 1, whose locking keeps the geometry the same for every value, leave none".to_string(),
+                _ => "the first of joints 3, 4, 5, 2, 6 whose locking leaves a family; joints 7 and 1, whose locking keeps the geometry the same for every value, leave none or only a harder one".to_string(),
             };
-            let reason = if quartic {
-                format!(
+            let reason = match tier(k) {
+                1 => format!(
                     "{reason}; no joint's locking leaves a family of quadratics, so a quartic one"
-                )
-            } else {
-                reason
+                ),
+                2 => format!(
+                    "{reason}; no joint's locking leaves a family of subproblems, so the general 6R"
+                ),
+                _ => reason,
             };
             (
                 k,
@@ -544,6 +554,27 @@ fn shoulder_sp1_step(j: &impl Fn(usize) -> usize) -> String {
         b = j(1),
         c = j(2)
     )
+}
+
+/// The general 6R's derivation (`kinegen::ik::families::general_6r`), for axes numbered
+/// by `j`.
+fn steps_general(j: impl Fn(usize) -> usize) -> Vec<String> {
+    let (a, b, c, d, e, f) = (j(0), j(1), j(2), j(3), j(4), j(5));
+    vec![
+        format!(
+            "the loop e^(ξ{a} q{a}) ⋯ e^(ξ{f} q{f}) M T⁻¹ = I; a joint k's point and direction (p_k, h_k) do not move with q_k: carried round the loop from k, split after two joints (three on the other side) — Raghavan and Roth's form, e^(ξ{c} q{c}) e^(ξ{d} q{d}) e^(ξ{e} q{e}) (p{f}, h{f}) = e^(−ξ{b} q{b}) e^(−ξ{a} q{a}) (pT, lT), first; twelve such forms, the first not degenerate for this arm used (remembered across calls)"
+        ),
+        "both sides' 14 quantities p, l, p·p, p·l, p × l, (p·p) l − 2 (p·l) p: linear in the nine products of the three-joint side's inner two joints' {1, cos, sin}, with coefficients linear in the outer joint's {1, cos, sin}, and linear in the nine products of the two-joint side's — coefficients read off the geometry on a grid of thirds of a turn (exact three-point Fourier sums)"
+            .to_string(),
+        "the two-joint side's eight products eliminated (Householder reflections of their 14 × 8 matrix): six equations in three joints; with x = tan(q/2) (offset) and the six multiplied by x of the second, twelve equations linear in twelve monomials: (A x² + B x + C) v = 0 in the outer joint's x"
+            .to_string(),
+        "x — the real eigenvalues of the 24 × 24 companion matrix (real Schur form; of the better-conditioned end, x or 1/x): at most 16 real solutions"
+            .to_string(),
+        "the three-joint side's inner joints from the null vector v (ratios of neighbouring monomials); the two-joint side's from the triangular factor of the elimination; the carried joint by SP1 on the rotation"
+            .to_string(),
+        "each branch polished by Newton steps on fk where it misses the pose by more than rounding, and checked there; branches the rounding made twice merged"
+            .to_string(),
+    ]
 }
 
 fn steps_three_parallel(j: impl Fn(usize) -> usize) -> Vec<String> {

@@ -43,6 +43,10 @@ pub enum Family {
     Spherical,
     /// h2 ∥ h3 ∥ h4, h5 and h6 not meeting: SP6 (a quartic).
     ThreeParallel,
+    /// Six revolute joints in no family, either way round: Raghavan and Roth's
+    /// elimination to a 12 × 12 quadratic eigenproblem in one joint's half-angle tangent,
+    /// solved at run time on the geometry's numbers (`kinegen::ik::families::general_6r`).
+    General6r,
 }
 
 /// The cases of [`Family::Position`] (`kinegen::ik::families::position_*`).
@@ -110,6 +114,7 @@ impl Family {
             Family::CartesianYaw { .. } => "cartesian_yaw",
             Family::Spherical => "spherical",
             Family::ThreeParallel => "three_parallel",
+            Family::General6r => "general_6r",
         }
     }
 
@@ -117,6 +122,16 @@ impl Family {
     /// quadratics fits, either way round or with any joint locked.
     pub fn quartic(&self) -> bool {
         matches!(self, Family::Spherical | Family::ThreeParallel)
+    }
+
+    /// How the family's first step is solved: 0 quadratics, 1 a quartic, 2 the general
+    /// 6R's eigenproblem. A 7-joint arm is locked where the lowest tier fits.
+    pub fn tier(&self) -> u8 {
+        match self {
+            Family::General6r => 2,
+            f if f.quartic() => 1,
+            _ => 0,
+        }
     }
 
     fn title(&self) -> &'static str {
@@ -147,6 +162,7 @@ impl Family {
             }
             Family::Spherical => "spherical wrist, general arm (SP5)",
             Family::ThreeParallel => "three parallel (SP6)",
+            Family::General6r => "general 6R (Raghavan–Roth elimination, eigenvalues)",
         }
     }
 
@@ -157,6 +173,7 @@ impl Family {
             Family::Position(Position::OneRevolute { .. }) => 2,
             Family::Position(Position::Cartesian) | Family::CartesianYaw { .. } => 1,
             Family::Position(_) | Family::PitchRoll { .. } => 4,
+            Family::General6r => 16,
             _ => 8,
         }
     }

@@ -1,0 +1,440 @@
+//! **General 6R**: six revolute axes in no special position (the Kinova Jaco's 60° wrist,
+//! the FANUC CRX, a calibrated arm whose axes miss by a hair) — Raghavan and Roth's
+//! elimination (1990, 1993) in Manocha and Canny's eigenvalue form (1994), on the
+//! product-of-exponentials geometry.
+//!
+//! Write the arm as `e^{ξ1 q1} ⋯ e^{ξ6 q6} = T M⁻¹`. A point `p6` on axis 6 and its
+//! direction `h6` do not move with joint 6, so
+//!
+//! ```text
+//! e^{ξ3 q3} e^{ξ4 q4} e^{ξ5 q5} (p6, h6) = e^{−ξ2 q2} e^{−ξ1 q1} (pT, lT)
+//! ```
+//!
+//! with `pT = T M⁻¹ p6`, `lT = R06 h6`, points seen from a point `o` on axis 3. Of each
+//! side's point `p` and direction `l` Raghavan and Roth take fourteen quantities — `p`,
+//! `l`, `p·p`, `p·l`, `p × l`, `(p·p) l − 2 (p·l) p` — that are linear in the nine
+//! products `{1, cos q4, sin q4} ⊗ {1, cos q5, sin q5}` with coefficients linear in `(1,
+//! cos q3, sin q3)` on the left, and linear in `{1, cos q1, sin q1} ⊗ {1, cos q2, sin q2}`
+//! on the right (the cubic terms of the last three cancel). So:
+//!
+//! 1. the coefficients are read off the geometry: each side sampled on a grid of thirds
+//!    of a turn, where `{1, cos, sin}` are recovered exactly by a three-point Fourier sum;
+//! 2. the eight products of (q1, q2) are eliminated: Householder reflections of their
+//!    14 × 8 coefficient matrix leave six equations in (q3, q4, q5);
+//! 3. with `x = tan(q/2)` those are polynomials of degree 2 in each of x3, x4, x5;
+//!    multiplied by x4 they give twelve equations linear in the twelve monomials
+//!    `x4^i x5^j` (i ≤ 3, j ≤ 2): `(A x3² + B x3 + C) v = 0`, a quadratic eigenproblem;
+//! 4. its 24 eigenvalues (a 24 × 24 companion matrix, real Schur form) are x3's
+//!    candidates — at most 16 real solutions, the other roots complex;
+//! 5. for each real x3 the null vector `v` of the 12 × 12 matrix gives x4, x5; the eight
+//!    products give q1, q2 (the triangular factor of step 2); q6 by SP1;
+//! 6. each branch is polished by Newton steps on `fk` and checked there
+//!    ([`Fit::Checked`]): the eigenvalues carry rounding the back-substitution amplifies.
+//!
+//! Everything here runs on the numbers of the geometry: the engine's part, at expansion
+//! time, is to prove that no family of subproblems fits (either way round) and that every
+//! joint is revolute. No allocation: every matrix is on the stack (the 24 × 24 companion
+//! is 4.6 kB).
+
+mod elimination;
+mod formulation;
+mod roots;
+
+use crate::ik::geometry::{orthogonal, rot, Geometry, Pose, M3, V3};
+use crate::ik::polish::{hadamard_ratio, polish};
+use crate::ik::solutions::Candidates;
+use crate::ik::subproblems::{sp1_angle, wrap, Fit};
+use crate::math::abs;
+use core::sync::atomic::{AtomicUsize, Ordering};
+use elimination::System;
+pub use formulation::{Formulation, FORMULATIONS};
+use roots::{REAL, SPLIT};
+
+/// A branch whose Jacobian's Hadamard ratio is below this is flagged singular
+/// ([`Fit::Double`]): `finish` then names the vanishing factors.
+const NEAR_SINGULAR: f64 = 1e-7;
+
+/// The general 6R solver (see the module): every real solution of `pose`, at most 16,
+/// each polished on `fk` and flagged [`Fit::Checked`] (a double root: [`Fit::Double`]).
+///
+/// ```
+/// use kinegen::ik::families::{general_6r, Hint};
+/// use kinegen::ik::geometry::{Geometry, M3, V3};
+/// use kinegen::ik::solutions::Candidates;
+/// // Six axes in general position (no two parallel, none meeting).
+/// let unit = |x: f64, y: f64, z: f64| V3::new(x, y, z).normalize();
+/// let g = Geometry {
+///     h: [unit(0.0, 0.0, 1.0), unit(0.1, 1.0, 0.2), unit(0.3, 0.9, -0.1),
+///         unit(1.0, 0.2, 0.1), unit(0.2, 1.0, -0.3), unit(0.9, 0.1, 0.4)],
+///     p: [V3::zeros(), V3::new(0.05, 0.0, 0.3), V3::new(0.4, 0.1, 0.35),
+///         V3::new(0.5, 0.05, 0.6), V3::new(0.7, 0.12, 0.55), V3::new(0.8, 0.0, 0.6)],
+///     prismatic: [false; 6],
+///     r_tool: M3::identity(),
+///     p_tool: V3::new(0.9, 0.0, 0.65),
+/// };
+/// let q = [0.3, -0.7, 0.4, 1.1, -0.5, 0.8];
+/// let mut out = Candidates::<6, 16>::default();
+/// general_6r(&g, &g.fk(&q), &[0.0; 6], &Hint::new(), &mut out);
+/// assert!(out.as_slice().iter().any(|c| (0..6).all(|i| (c.q[i] - q[i]).abs() < 1e-9)));
+/// ```
+pub fn general_6r<const K: usize>(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    hint: &Hint,
+    out: &mut Candidates<6, K>,
+) {
+    let mut found = Found::default();
+    let reaches = |q: &[f64; 6]| miss(g, q, pose) <= REACHES * (1.0 + pose.p.amax());
+    let conditioning = eliminate_and_solve(g, pose, free, hint, &mut found);
+    if conditioning < WELL_CONDITIONED || !found.as_slice().iter().any(|c| reaches(&c.q)) {
+        // Every form's pencil singular or nearly so for this pose (special poses: the
+        // tool along axis 1, joints at right angles — the elimination loses roots there,
+        // though the solutions are isolated), or no branch reaches the pose (out of reach,
+        // or a singular pose whose solutions form a continuum): the solutions of poses
+        // moved off it, brought back onto it by Newton steps, added.
+        // Both ways: a pose on the boundary where two solutions are born (a singular
+        // one) has them on one side only; and two sizes, for the moved poses' pencils are
+        // still ill-conditioned (pivot ratio ~1e-6, ~1e-5), and a branch one misses the
+        // other finds (the self-tests' degenerate poses of the Jaco and the CRX).
+        for size in [NUDGE, -NUDGE, 10.0 * NUDGE, -10.0 * NUDGE] {
+            let mut seeds = Found::default();
+            let _ = eliminate_and_solve(g, &nudged(pose, size), free, hint, &mut seeds);
+            for s in seeds.as_slice() {
+                // Tracked back in steps of a tenth: near-singular poses have solutions
+                // ~NUDGE / σ apart, and one Newton run from the nudged pose's could land
+                // on a neighbour's.
+                let mut q = s.q;
+                let mut step = size;
+                while abs(step) > 1e-8 {
+                    step /= 10.0;
+                    q = polish(g, q, &nudged(pose, step));
+                }
+                let q = polish(g, q, pose).map(wrap);
+                let room = found.as_slice().len() < FOUND;
+                if room && !found.as_slice().iter().any(|c| same(&c.q, &q)) {
+                    // Out of reach (or a workspace-boundary pose Newton cannot settle on):
+                    // the nearest, flagged so; `finish` drops them where a branch reaches.
+                    found.push(
+                        q,
+                        if reaches(&q) {
+                            Fit::Free
+                        } else {
+                            Fit::LeastSquares
+                        },
+                    );
+                }
+            }
+        }
+    }
+    merge_double_roots(g, pose, &mut found);
+    // The caller's configuration, where it solves the pose: it replaces a branch within
+    // a double root's spread of it (at a singular pose Newton stops ~1e-7 away along the
+    // direction the pose does not see), else it is added — a point of a continuum of
+    // solutions. Either way `ik_near` stays where it is.
+    let here = free.map(wrap);
+    if reaches(&here) {
+        let near = |c: &&mut crate::ik::solutions::Candidate<6>| {
+            c.q.iter()
+                .zip(&here)
+                .all(|(a, b)| abs(wrap(a - b)) < DOUBLE_ROOT)
+        };
+        let room = found.as_slice().len() < FOUND;
+        match found.as_mut_slice().iter_mut().find(|c| near(c)) {
+            Some(c) => c.q = here,
+            None if room => found.push(here, Fit::Free),
+            None => {}
+        }
+    }
+    // Spurious real roots (the pencil's rounding) polish to nowhere: the closest first.
+    let mut order: [(f64, usize); FOUND] = [(f64::INFINITY, 0); FOUND];
+    for (i, c) in found.as_slice().iter().enumerate() {
+        order[i] = (miss(g, &c.q, pose), i);
+    }
+    let m = found.as_slice().len();
+    order[..m].sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    for &(_, i) in order[..m].iter().take(K) {
+        let c = found.as_slice()[i];
+        out.push(c.q, c.fit);
+    }
+}
+
+/// Branches closer than this in every joint (radians) are one solution twice: a double
+/// root at a singular pose, which rounding splits by ~1e-8 (eigenvalues) to ~1e-6
+/// (Newton's linear convergence at a singularity). Two regular solutions are never this
+/// close but at a pose within rounding of a singular one.
+const DOUBLE_ROOT: f64 = 2e-6;
+
+/// Merges the reaching branches within [`DOUBLE_ROOT`] of each other into their mean,
+/// brought back onto the pose and flagged [`Fit::Double`].
+fn merge_double_roots(g: &Geometry<6>, pose: &Pose, found: &mut Found) {
+    let mut kept = Found::default();
+    let all = *found;
+    let items = all.as_slice();
+    let mut used = [false; FOUND];
+    for i in 0..items.len() {
+        if used[i] {
+            continue;
+        }
+        let (mut sum, mut count, mut fit) = (items[i].q, 1.0, items[i].fit);
+        for j in i + 1..items.len() {
+            let close = items[i]
+                .q
+                .iter()
+                .zip(&items[j].q)
+                .all(|(a, b)| abs(wrap(a - b)) < DOUBLE_ROOT);
+            if !used[j] && close {
+                used[j] = true;
+                for (s, (a, b)) in sum.iter_mut().zip(items[i].q.iter().zip(&items[j].q)) {
+                    // Whole turns apart counts as near: add the difference, not the value.
+                    *s += a + wrap(b - a);
+                }
+                count += 1.0;
+                fit = Fit::Double;
+            }
+        }
+        let q = if count > 1.0 {
+            polish(g, sum.map(|s| s / count), pose).map(wrap)
+        } else {
+            items[i].q
+        };
+        kept.push(q, fit);
+    }
+    *found = kept;
+}
+
+/// Room for the branches the solver keeps: 24 eigenvalues, a second configuration for
+/// some, the caller's (more are not kept: a real 6R has at most 16 solutions).
+const FOUND: usize = 40;
+type Found = Candidates<6, FOUND>;
+
+/// A branch within this of the pose (relative to its position's size; position plus
+/// rotation norm) reaches it; `finish` then measures it against `EXACT_TOLERANCE`.
+const REACHES: f64 = 1e-9;
+
+/// How far a pose the elimination is degenerate for is moved ([`nudged`]), both ways:
+/// far enough that the moved pose's pencil is regular (pivot ratio ~1e-6), near enough
+/// that tracking back is a few Newton runs.
+const NUDGE: f64 = 1e-4;
+
+/// `pose` turned by `size` radians about a generic axis and moved by `size` per metre of
+/// its distance from the base (plus one): off any special pose.
+fn nudged(pose: &Pose, size: f64) -> Pose {
+    let axis = V3::new(0.267, -0.535, 0.802).normalize();
+    let scale = 1.0 + pose.p.amax();
+    Pose {
+        r: rot(&axis, size) * pose.r,
+        p: pose.p + V3::new(-0.62, 0.41, 0.67) * (size * scale),
+    }
+}
+
+/// Steps 1–6 on a formulation regular for this arm and pose (the hint's if it is well
+/// conditioned, else the best conditioned); the branches into `found`, and that pencil's
+/// pivot ratio (0: none regular, nothing found).
+fn eliminate_and_solve(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    hint: &Hint,
+    found: &mut Found,
+) -> f64 {
+    // The remembered formulation where it is well conditioned for this pose; else the
+    // best conditioned of all (a pose near a degenerate one for some of them).
+    let first = hint.get();
+    let mut best: Option<(System, usize)> = None;
+    for i in 0..FORMULATIONS.len() {
+        let k = (first + i) % FORMULATIONS.len();
+        let Some(sys) = System::new(g, pose, FORMULATIONS[k]) else {
+            continue;
+        };
+        if sys.ratio >= WELL_CONDITIONED {
+            hint.set(k);
+            solve_with(g, pose, free, &sys, found);
+            return sys.ratio;
+        }
+        if best.as_ref().is_none_or(|(b, _)| sys.ratio > b.ratio) {
+            best = Some((sys, k));
+        }
+    }
+    match best {
+        Some((sys, k)) => {
+            hint.set(k);
+            solve_with(g, pose, free, &sys, found);
+            sys.ratio
+        }
+        None => 0.0,
+    }
+}
+
+/// A formulation whose pencil's pivot ratio is at least this is used without looking at
+/// the others (regular poses of the Jaco: 1e-5 to 1).
+const WELL_CONDITIONED: f64 = 1e-3;
+
+/// Which formulation ([`FORMULATIONS`]) was regular last time: special geometry (two
+/// parallel axes, a 60° wrist) makes some of them degenerate for every pose, and finding
+/// that out costs an elimination each. A generated `ik` keeps one in a `static` — a hint
+/// only: a formulation degenerate for some pose makes the solver go on to the next.
+#[derive(Debug, Default)]
+pub struct Hint(AtomicUsize);
+
+impl Hint {
+    /// Start with Raghavan and Roth's own formulation.
+    pub const fn new() -> Hint {
+        Hint(AtomicUsize::new(0))
+    }
+
+    fn get(&self) -> usize {
+        self.0.load(Ordering::Relaxed) % FORMULATIONS.len()
+    }
+
+    fn set(&self, k: usize) {
+        self.0.store(k, Ordering::Relaxed);
+    }
+}
+
+/// Steps 4–6 on one regular formulation.
+fn solve_with(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], sys: &System, found: &mut Found) {
+    let mut roots = [(0.0, 0.0); 2 * 12];
+    let n = sys.real_roots(&mut roots);
+    let r06 = pose.r * g.r_tool.transpose();
+    let f = sys.eliminated;
+    let xf = orthogonal(&g.h[f]);
+    for &(x, im) in &roots[..n] {
+        let (branches, count) = sys.back_substitute(x);
+        for mut q in branches.into_iter().take(count) {
+            // The eliminated joint by SP1: rot(h_f, q_f) = (R before f)ᵀ R06 (R after f)ᵀ.
+            let turn = |j: usize| rot(&g.h[j], q[j]);
+            let before = (0..f).fold(M3::identity(), |r, j| r * turn(j));
+            let after = (f + 1..6).fold(M3::identity(), |r, j| r * turn(j));
+            let target = before.tr_mul(&r06) * after.transpose();
+            let (qf, ff) = sp1_angle(&xf, &(target * xf), &g.h[f], free[f]);
+            q[f] = qf.theta;
+            // Newton on `fk` where the back-substitution left more than rounding.
+            let q = if miss(g, &q, pose) > POLISHED * (1.0 + pose.p.amax()) {
+                polish(g, q, pose)
+            } else {
+                q
+            };
+            let q = q.map(wrap);
+            // Two eigenvalues of one solution (a double root split by rounding) polish to
+            // it twice.
+            if found.as_slice().iter().any(|c| same(&c.q, &q)) {
+                continue;
+            }
+            // A root off the real line, or a vector of a two-dimensional null space (one
+            // of them may be a neighbouring root's), is a solution only where it reaches
+            // the pose.
+            if (im > REAL || count == 2) && miss(g, &q, pose) > REACHES * (1.0 + pose.p.amax()) {
+                continue;
+            }
+            // A split root with one null vector is one configuration where two solutions
+            // meet: a singular one (two null vectors: two solutions sharing a joint); so
+            // is a branch whose Jacobian is singular to rounding.
+            let fit = if (im > SPLIT && count == 1) || hadamard_ratio(g, &q) < NEAR_SINGULAR {
+                Fit::Double
+            } else {
+                Fit::Checked
+            };
+            if found.as_slice().len() < FOUND {
+                found.push(q, fit.and(ff));
+            }
+        }
+    }
+}
+
+/// A back-substituted branch this close to the pose (relative to its position's size) is
+/// not polished: `finish` checks it against `EXACT_TOLERANCE` (1e-10) anyway.
+const POLISHED: f64 = 1e-13;
+
+/// Two configurations within rounding of each other (whole turns apart counts as one).
+fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
+    a.iter().zip(b).all(|(x, y)| abs(wrap(x - y)) < 1e-7)
+}
+
+/// How far `fk(q)` is from `pose`: position (in the arm's units) plus rotation.
+fn miss(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> f64 {
+    let at = g.fk(q);
+    (at.p - pose.p).norm() + (at.r - pose.r).norm()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::geometry::M3;
+
+    /// Standard DH rows (a, α, d, θ offset) to the zero-configuration geometry.
+    pub(crate) fn from_dh(rows: &[[f64; 4]; 6], flip1: bool) -> Geometry<6> {
+        let (mut r, mut p) = (M3::identity(), V3::zeros());
+        let mut h = [V3::z(); 6];
+        let mut pts = [V3::zeros(); 6];
+        for (i, [a, alpha, d, theta]) in rows.iter().enumerate() {
+            h[i] = r * V3::z();
+            pts[i] = p;
+            let rz = rot(&V3::z(), *theta);
+            p += r * (rz * V3::new(*a, 0.0, 0.0) + V3::new(0.0, 0.0, *d));
+            r = r * rz * rot(&V3::x(), *alpha);
+        }
+        if flip1 {
+            h[0] = -h[0];
+        }
+        Geometry {
+            h,
+            p: pts,
+            prismatic: [false; 6],
+            r_tool: r,
+            p_tool: p,
+        }
+    }
+
+    /// The Jaco's table (`robots/kinova_jaco.toml`).
+    pub(crate) fn jaco() -> Geometry<6> {
+        use core::f64::consts::PI;
+        from_dh(
+            &[
+                [0.0, PI / 2.0, 0.2755, 0.0],
+                [0.41, PI, 0.0, -PI / 2.0],
+                [0.0, PI / 2.0, -0.0098, PI / 2.0],
+                [0.0, PI / 3.0, -0.250197125001, 0.0],
+                [0.0, PI / 3.0, -0.085794250002, -PI],
+                [0.0, PI, -0.211597125001, 5.0 * PI / 9.0],
+            ],
+            true,
+        )
+    }
+
+    fn lcg(seed: &mut u64) -> f64 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+
+    fn solve(g: &Geometry<6>, q: &[f64; 6]) -> (usize, bool, f64) {
+        let pose = g.fk(q);
+        let mut out = Candidates::<6, 16>::default();
+        general_6r(g, &pose, &[0.0; 6], &Hint::new(), &mut out);
+        let mut worst: f64 = 0.0;
+        let mut hit = false;
+        for c in out.as_slice() {
+            worst = worst.max(miss(g, &c.q, &pose));
+            hit |= same(&c.q, q);
+        }
+        (out.as_slice().len(), hit, worst)
+    }
+
+    #[test]
+    fn the_jaco_generating_configuration_is_found() {
+        let g = jaco();
+        let mut seed = 7;
+        let mut missed = 0;
+        for _ in 0..200 {
+            let q: [f64; 6] = core::array::from_fn(|_| 3.0 * lcg(&mut seed));
+            let (n, hit, worst) = solve(&g, &q);
+            if !hit {
+                missed += 1;
+                std::println!("{q:?}: {n} solutions, worst {worst:e}");
+            }
+        }
+        assert_eq!(missed, 0);
+    }
+}

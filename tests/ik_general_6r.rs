@@ -1,0 +1,178 @@
+//! The general 6R solver (`kinegen::ik::families::general_6r`) on random arms whose axes
+//! are in no special position (random twists, lengths and offsets: no two axes parallel
+//! or meeting), IKFast's self-test as `ik_closed_form.rs` runs it on the robots, and the
+//! number of real solutions checked against an independent method: Newton's method from
+//! many seeded starts, its converged points merged.
+
+use core::f64::consts::{FRAC_PI_2, PI, TAU};
+use kinegen::ik::families::{general_6r, Hint};
+use kinegen::ik::geometry::{rot, Geometry, Pose, M3, V3};
+use kinegen::ik::polish::{hadamard_ratio, polish};
+use kinegen::ik::solutions::Candidates;
+use kinegen::ik::XorShift64;
+
+/// Standard DH rows `[a, α, d, θ offset]` to the zero-configuration geometry.
+fn from_dh(rows: &[[f64; 4]; 6]) -> Geometry<6> {
+    let (mut r, mut p) = (M3::identity(), V3::zeros());
+    let mut h = [V3::z(); 6];
+    let mut points = [V3::zeros(); 6];
+    for (i, [a, alpha, d, theta]) in rows.iter().enumerate() {
+        h[i] = r * V3::z();
+        points[i] = p;
+        let rz = rot(&V3::z(), *theta);
+        p += r * (rz * V3::new(*a, 0.0, 0.0) + V3::new(0.0, 0.0, *d));
+        r = r * rz * rot(&V3::x(), *alpha);
+    }
+    Geometry {
+        h,
+        p: points,
+        prismatic: [false; 6],
+        r_tool: r,
+        p_tool: p,
+    }
+}
+
+/// A random arm: link lengths 0.05–0.45 m, offsets within ±0.3 m, twists 0.3–1.3 rad
+/// or their supplements (never parallel, never meeting a neighbour), random home angles.
+fn random_arm(rng: &mut XorShift64) -> (Geometry<6>, f64) {
+    let mut rows = [[0.0; 4]; 6];
+    let mut reach = 0.0;
+    for row in rows.iter_mut() {
+        let a = 0.05 + 0.4 * rng.next_f64();
+        let twist = 0.3 + 1.0 * rng.next_f64();
+        let alpha = if rng.next_f64() < 0.5 {
+            twist
+        } else {
+            PI - twist
+        };
+        let d = 0.6 * rng.next_f64() - 0.3;
+        *row = [a, alpha, d, TAU * rng.next_f64() - PI];
+        reach += a + d.abs();
+    }
+    (from_dh(&rows), reach)
+}
+
+/// A configuration in (−π, π] with 20 % of the joints snapped to −π/2, 0 or π/2.
+fn configuration(rng: &mut XorShift64) -> [f64; 6] {
+    core::array::from_fn(|_| {
+        let q = TAU * rng.next_f64() - PI;
+        if rng.next_f64() < 0.2 {
+            [-FRAC_PI_2, 0.0, FRAC_PI_2][(rng.next_u64() % 3) as usize]
+        } else {
+            q
+        }
+    })
+}
+
+/// `max |fk(q) − pose|` over the rotation's and the position's entries.
+fn miss(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> f64 {
+    let at = g.fk(q);
+    (at.r - pose.r).amax().max((at.p - pose.p).amax())
+}
+
+fn gap(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    (0..6)
+        .map(|i| {
+            let d = a[i] - b[i];
+            (d - TAU * (d / TAU).round()).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The exact solutions (within 1e-10 of the pose, relative to the arm's reach) the
+/// solver returns for `pose`.
+fn exact(g: &Geometry<6>, pose: &Pose, reach: f64, hint: &Hint) -> Vec<[f64; 6]> {
+    let mut out = Candidates::<6, 16>::default();
+    general_6r(g, pose, &[0.0; 6], hint, &mut out);
+    out.as_slice()
+        .iter()
+        .map(|c| c.q)
+        .filter(|q| miss(g, q, pose) <= 1e-10 * reach.max(1.0))
+        .collect()
+}
+
+/// Generating configurations this close to singular (Hadamard's ratio of the Jacobian)
+/// count as singular: their solutions merge.
+const SINGULAR: f64 = 1e-9;
+
+#[test]
+fn random_general_arms_self_test() {
+    let mut rng = XorShift64::new(6);
+    let (mut cases, mut regular_missed, mut singular_cases, mut solutions) = (0, 0, 0, 0);
+    for _ in 0..20 {
+        let (g, reach) = random_arm(&mut rng);
+        let hint = Hint::new();
+        for _ in 0..500 {
+            let q = configuration(&mut rng);
+            let pose = g.fk(&q);
+            let sols = exact(&g, &pose, reach, &hint);
+            for (i, a) in sols.iter().enumerate() {
+                for b in &sols[i + 1..] {
+                    assert!(gap(a, b) > 1e-9, "duplicate solutions for {q:?}");
+                }
+            }
+            cases += 1;
+            solutions += sols.len();
+            if hadamard_ratio(&g, &q) < SINGULAR {
+                singular_cases += 1;
+                continue;
+            }
+            regular_missed += usize::from(!sols.iter().any(|s| gap(s, &q) <= 1e-7));
+        }
+    }
+    eprintln!(
+        "random general 6R: {cases} poses ({singular_cases} singular), {solutions} exact solutions, \
+         generating configuration missed at {regular_missed} regular poses"
+    );
+    assert_eq!(regular_missed, 0, "generating configurations missed");
+}
+
+/// Newton's method (damped Gauss–Newton on `fk`, `kinegen::ik::polish`) from [`STARTS`] seeded
+/// starts per pose, its converged points merged: every solution it finds is among the
+/// solver's (no solution dropped), and the counts are equal but where Newton missed one.
+#[test]
+fn solution_counts_match_many_newton_starts() {
+    let mut rng = XorShift64::new(16);
+    let (mut poses, mut equal, mut newton_total, mut solver_total) = (0, 0, 0, 0);
+    for arm in 0..12 {
+        let (g, reach) = random_arm(&mut rng);
+        let hint = Hint::new();
+        for _ in 0..20 {
+            let pose = g.fk(&configuration(&mut rng));
+            let sols = exact(&g, &pose, reach, &hint);
+            let mut newton: Vec<[f64; 6]> = Vec::new();
+            for _ in 0..STARTS {
+                let start: [f64; 6] = core::array::from_fn(|_| TAU * rng.next_f64() - PI);
+                let q = polish(&g, start, &pose);
+                if miss(&g, &q, &pose) <= 1e-10 * reach.max(1.0)
+                    && !newton.iter().any(|n| gap(n, &q) <= 1e-6)
+                {
+                    newton.push(q);
+                }
+            }
+            for n in &newton {
+                assert!(
+                    sols.iter().any(|s| gap(s, n) <= 1e-6),
+                    "arm {arm}: Newton's solution {n:?} is not among the solver's {sols:?}"
+                );
+            }
+            poses += 1;
+            equal += usize::from(newton.len() == sols.len());
+            newton_total += newton.len();
+            solver_total += sols.len();
+        }
+    }
+    eprintln!(
+        "{poses} poses: Newton found {newton_total} solutions, the solver {solver_total}; equal counts at {equal}"
+    );
+    // Where the counts differ the solver has more (every one of them exact, checked on
+    // `fk` in `exact`): solutions whose basins 2000 random starts missed. Measured: 2 of 240.
+    assert!(
+        poses - equal <= 2,
+        "Newton from {STARTS} starts and the solver disagree on counts at {} poses",
+        poses - equal
+    );
+}
+
+/// Newton starts per pose.
+const STARTS: usize = 2000;
