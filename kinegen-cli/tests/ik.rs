@@ -252,10 +252,11 @@ fn show_what_ik_lists_the_derivation() {
     );
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "6"]);
     assert!(text.contains("(joint 6 locked)"), "{text}");
+    // Joint 2 locked leaves no family of subproblems either way: the general 6R.
     let text = stdout(&["show", "panda", "--what", "ik", "--free", "2"]);
     assert!(
-        text.contains("no closed-form IK")
-            && text.contains("joints whose locking leaves a family: 4, 5, 6, 7"),
+        text.contains("general 6R (Raghavan–Roth elimination, eigenvalues) (joint 2 locked)")
+            && text.contains("joints 1, 3 with the general 6R"),
         "{text}"
     );
     // The elbow locked: the six others, read from the tool, are a spherical wrist after
@@ -474,4 +475,45 @@ fn ik_cartesian_gantry_with_yaw() {
         got.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-12),
         "{got:?}"
     );
+}
+
+/// The Jaco fits no family of subproblems: the general 6R, up to 16 solutions, every one
+/// reaching the pose the numeric reference made, the source configuration among them.
+#[test]
+fn ik_kinova_jaco_general_6r() {
+    let show = stdout(&["show", "kinova_jaco", "--what", "ik"]);
+    assert!(
+        show.contains("general 6R (Raghavan–Roth elimination, eigenvalues)")
+            && show.contains("at most 16 solutions per pose"),
+        "{show}"
+    );
+    let (robot, _) = toml_file::load_file(&robot_file("kinova_jaco")).unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    let q = [0.3, -0.7, 0.4, 1.1, -0.5, 0.8];
+    let pose = reference.fk(&q).unwrap();
+    let flat: Vec<String> = pose.transpose().iter().map(|x| format!("{x:e}")).collect();
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        "kinova_jaco",
+        "--pose",
+        &flat.join(","),
+        "--json",
+    ]))
+    .unwrap();
+    let solutions = out["solutions"].as_array().unwrap();
+    assert!(solutions.len() >= 2, "{out}");
+    let mut found = false;
+    for (i, s) in solutions.iter().enumerate() {
+        let got = floats(s);
+        assert!(out["exact"][i].as_bool().unwrap(), "{out}");
+        assert!(
+            distance(&reference.fk(&got).unwrap(), &pose) < 1e-10,
+            "{got:?}"
+        );
+        found |= got.iter().zip(&q).all(|(a, b)| {
+            let d = a - b;
+            (d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round()).abs() < 1e-9
+        });
+    }
+    assert!(found, "{out}");
 }

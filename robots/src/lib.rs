@@ -247,14 +247,14 @@ pub const URDFS: &[(&str, &str, &str)] = &[
         include_str!("../urdf/crx10ial.urdf"),
     ),
     (
-        "urdf/kinova_j2s6s.urdf",
-        "robots/urdf/kinova_j2s6s.urdf",
-        include_str!("../urdf/kinova_j2s6s.urdf"),
-    ),
-    (
         "urdf/kinova_gen3.urdf",
         "robots/urdf/kinova_gen3.urdf",
         include_str!("../urdf/kinova_gen3.urdf"),
+    ),
+    (
+        "urdf/kinova_j2s6s.urdf",
+        "robots/urdf/kinova_j2s6s.urdf",
+        include_str!("../urdf/kinova_j2s6s.urdf"),
     ),
     (
         "urdf/kuka_kr6_r900.urdf",

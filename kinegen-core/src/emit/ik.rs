@@ -69,10 +69,15 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
         .enumerate()
         .map(|(i, s)| format!("{}. {s}", i + 1))
         .collect();
+    // A robot without a closed-form determinant has no `SINGULARITIES` to name.
+    let singular_doc = match singular {
+        SingularCheck::None => "singular (a subproblem or a double root met a singularity)",
+        _ => "singular (which entries of `SINGULARITIES` vanish)",
+    };
     let derivation = format!(
         "Family: **{}** — decided exactly from the joint axes at `q = 0`.\n\n```text\n{}\n```\n\n\
          Each solution is flagged exact or least squares (unreachable pose: the nearest, with its \
-         residual), singular (which entries of `SINGULARITIES` vanish), and within `LIMITS`; \
+         residual), {singular_doc}, and within `LIMITS`; \
          revolute joints are wrapped by whole turns into the limits where that helps. No \
          allocation, no panic: a non-finite pose gives no solutions.{}",
         plan.name,

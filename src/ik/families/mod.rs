@@ -24,7 +24,9 @@
 //! and the two whose first step is a quartic, every branch checked against `fk`:
 //! `spherical.rs` (spherical wrist after three axes in no special position, SP5:
 //! [`spherical()`]) and `three_parallel.rs` (h2 ∥ h3 ∥ h4 with h5, h6 not meeting, SP6:
-//! [`three_parallel()`]); the spherical wrist four of them end in is `wrist.rs`. A 7-joint S-R-S arm (the iiwa) is also solved by its arm
+//! [`three_parallel()`]); the spherical wrist four of them end in is `wrist.rs`. Six
+//! revolute axes in no family: `general_6r/` ([`general_6r()`], Raghavan and Roth's
+//! elimination to an eigenproblem). A 7-joint S-R-S arm (the iiwa) is also solved by its arm
 //! angle: `srs.rs` ([`srs_arm_angle`], [`arm_angle_intervals`]).
 
 use super::geometry::{Geometry, Pose};

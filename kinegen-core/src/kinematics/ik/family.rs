@@ -22,6 +22,10 @@
 //! | spherical wrist | h4, h5, h6 meet; axes 1–3 in no special position | SP5 for (q1, q2, q3) |
 //! | three parallel | h2 ∥ h3 ∥ h4, h5 and h6 not meeting | SP6 for (q1, q5) |
 //!
+//! and, where none of those fits either way and every joint is revolute, the **general 6R**
+//! (`kinegen::ik::families::general_6r`: Raghavan and Roth's elimination, solved at run
+//! time as an eigenproblem on the geometry's numbers — the Jaco, the CRX-10iA/L, the Gen3).
+//!
 //! Every 6-joint family is also matched on the chain **read from the tool to the base**
 //! (joints 6, 5, …, 1): a spherical *shoulder* (axes 1, 2, 3 meet) is the spherical wrist
 //! of the reversed chain, three parallel axes at the wrist are three parallel axes at its

@@ -1,0 +1,136 @@
+//! The general 6R (issue 28): all solutions per call of the generated `ik`, on 1 000
+//! poses each (fk of configurations drawn within the limits, fixed seed), beside the UR5
+//! (a family of quadratics) in the same run:
+//!
+//! - the Kinova Jaco 2 (60° wrist, `robots/kinova_jaco.toml`);
+//! - the FANUC CRX-10iA/L (`robots/fanuc_crx10ial.toml`, from ROS-Industrial's URDF);
+//! - the Kinova Gen3 with joint 7 locked at its generating value (`ik_with`).
+//!
+//! Target: ≤ 20 µs per all-solutions call for the Jaco and the CRX. A one-off check
+//! first: every exact solution within 1e-10 of its pose (kinegen's fk), the solution
+//! counts, and how often the generating configuration is among them (printed; every pose
+//! for the Jaco, all but the few the self-tests bound for the others).
+//! Run: `cargo bench --bench ik_general`.
+
+use std::hint::black_box;
+
+#[path = "common/ik.rs"]
+mod ik_common;
+use ik_common::{miss, poses, same};
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use kinegen::Kinematics;
+use kinegen_robots::{FanucCrx10iaL, KinovaGen3, KinovaJaco, Ur5};
+
+/// 1 000 poses when timing (`cargo bench`), 50 when CI runs the bench once as a test.
+fn poses_count() -> usize {
+    if std::env::args().any(|a| a == "--bench") {
+        1000
+    } else {
+        50
+    }
+}
+
+/// Solutions, exact ones, and poses whose generating configuration is found; at most
+/// `most_missed` poses may miss it.
+fn check<const N: usize, const K: usize, R: Kinematics<N>>(
+    name: &str,
+    robot: &R,
+    ik: impl Fn(&[[f64; 4]; 4], &[f64; N]) -> kinegen::ik::IkSolutions<N, K>,
+    set: &[([[f64; 4]; 4], [f64; N])],
+    most_missed: usize,
+) {
+    let (mut all, mut exact, mut found) = (0, 0, 0);
+    let mut counts = [0usize; 17];
+    for (pose, q) in set {
+        let sols = ik(pose, q);
+        all += sols.len();
+        counts[sols.exact().count().min(16)] += 1;
+        for b in sols.exact() {
+            let e = miss(robot, &b.q, pose);
+            assert!(e <= 1e-10, "{name}: an exact solution {e:e} off");
+            exact += 1;
+        }
+        if sols.exact().any(|b| same(&b.q, q)) {
+            found += 1;
+        }
+    }
+    println!(
+        "{name}: {} poses, {all} solutions, {exact} exact, generating configuration found {found}/{}; poses by exact count (0..16): {counts:?}",
+        set.len(),
+        set.len()
+    );
+    assert!(
+        set.len() - found <= most_missed,
+        "{name}: {} generating configurations not found",
+        set.len() - found
+    );
+}
+
+fn bench(c: &mut Criterion) {
+    let n = poses_count();
+    let (jaco, crx, gen3, ur5) = (
+        KinovaJaco::default(),
+        FanucCrx10iaL::default(),
+        KinovaGen3,
+        Ur5::default(),
+    );
+    let jaco_set = poses(&jaco, 28, n);
+    let crx_set = poses(&crx, 28, n);
+    let gen3_set = poses(&gen3, 28, n);
+    let ur5_set = poses(&ur5, 28, n);
+    check(
+        "kinova_jaco (general 6R)",
+        &jaco,
+        |p, _| jaco.ik(p),
+        &jaco_set,
+        0,
+    );
+    check(
+        "fanuc_crx10ial (general 6R)",
+        &crx,
+        |p, _| crx.ik(p),
+        &crx_set,
+        1,
+    );
+    check(
+        "kinova_gen3, joint 7 locked (general 6R)",
+        &gen3,
+        |p, q| gen3.ik_with(p, q[6]),
+        &gen3_set,
+        1,
+    );
+    let mut group = c.benchmark_group("ik_general");
+    group.bench_function("kinova_jaco", |b| {
+        b.iter(|| {
+            for (pose, _) in &jaco_set {
+                black_box(jaco.ik(black_box(pose)));
+            }
+        })
+    });
+    group.bench_function("fanuc_crx10ial", |b| {
+        b.iter(|| {
+            for (pose, _) in &crx_set {
+                black_box(crx.ik(black_box(pose)));
+            }
+        })
+    });
+    group.bench_function("kinova_gen3_joint_7_locked", |b| {
+        b.iter(|| {
+            for (pose, q) in &gen3_set {
+                black_box(gen3.ik_with(black_box(pose), q[6]));
+            }
+        })
+    });
+    group.bench_function("ur5", |b| {
+        b.iter(|| {
+            for (pose, _) in &ur5_set {
+                black_box(ur5.ik(black_box(pose)));
+            }
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
