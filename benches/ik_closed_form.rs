@@ -27,6 +27,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::hint::black_box;
 
 #[path = "common/ik.rs"]
+#[allow(dead_code)]
 mod ik_common;
 use ik_common::{miss, poses, same};
 

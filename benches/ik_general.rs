@@ -16,56 +16,10 @@ use std::hint::black_box;
 
 #[path = "common/ik.rs"]
 mod ik_common;
-use ik_common::{miss, poses, same};
+use ik_common::{check_solutions, poses, poses_count};
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use kinegen::Kinematics;
 use kinegen_robots::{FanucCrx10iaL, KinovaGen3, KinovaJaco, Ur5};
-
-/// 1 000 poses when timing (`cargo bench`), 50 when CI runs the bench once as a test.
-fn poses_count() -> usize {
-    if std::env::args().any(|a| a == "--bench") {
-        1000
-    } else {
-        50
-    }
-}
-
-/// Solutions, exact ones, and poses whose generating configuration is found; at most
-/// `most_missed` poses may miss it.
-fn check<const N: usize, const K: usize, R: Kinematics<N>>(
-    name: &str,
-    robot: &R,
-    ik: impl Fn(&[[f64; 4]; 4], &[f64; N]) -> kinegen::ik::IkSolutions<N, K>,
-    set: &[([[f64; 4]; 4], [f64; N])],
-    most_missed: usize,
-) {
-    let (mut all, mut exact, mut found) = (0, 0, 0);
-    let mut counts = [0usize; 17];
-    for (pose, q) in set {
-        let sols = ik(pose, q);
-        all += sols.len();
-        counts[sols.exact().count().min(16)] += 1;
-        for b in sols.exact() {
-            let e = miss(robot, &b.q, pose);
-            assert!(e <= 1e-10, "{name}: an exact solution {e:e} off");
-            exact += 1;
-        }
-        if sols.exact().any(|b| same(&b.q, q)) {
-            found += 1;
-        }
-    }
-    println!(
-        "{name}: {} poses, {all} solutions, {exact} exact, generating configuration found {found}/{}; poses by exact count (0..16): {counts:?}",
-        set.len(),
-        set.len()
-    );
-    assert!(
-        set.len() - found <= most_missed,
-        "{name}: {} generating configurations not found",
-        set.len() - found
-    );
-}
 
 fn bench(c: &mut Criterion) {
     let n = poses_count();
@@ -79,21 +33,21 @@ fn bench(c: &mut Criterion) {
     let crx_set = poses(&crx, 28, n);
     let gen3_set = poses(&gen3, 28, n);
     let ur5_set = poses(&ur5, 28, n);
-    check(
+    check_solutions(
         "kinova_jaco (general 6R)",
         &jaco,
         |p, _| jaco.ik(p),
         &jaco_set,
         0,
     );
-    check(
+    check_solutions(
         "fanuc_crx10ial (general 6R)",
         &crx,
         |p, _| crx.ik(p),
         &crx_set,
         1,
     );
-    check(
+    check_solutions(
         "kinova_gen3, joint 7 locked (general 6R)",
         &gen3,
         |p, q| gen3.ik_with(p, q[6]),

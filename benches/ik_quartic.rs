@@ -17,52 +17,10 @@ use std::hint::black_box;
 
 #[path = "common/ik.rs"]
 mod ik_common;
-use ik_common::{miss, poses, same};
+use ik_common::{check_solutions, poses, poses_count};
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use kinegen::Kinematics;
 use kinegen_robots::{SkewShoulder, Ur5, Ur5eWristOffset};
-
-/// 1 000 poses when timing (`cargo bench`), 50 when CI runs the bench once as a test.
-fn poses_count() -> usize {
-    if std::env::args().any(|a| a == "--bench") {
-        1000
-    } else {
-        50
-    }
-}
-
-/// Solutions, exact ones, and poses whose generating configuration is found.
-fn check<const N: usize, const K: usize, R: Kinematics<N>>(
-    name: &str,
-    robot: &R,
-    ik: impl Fn(&[[f64; 4]; 4]) -> kinegen::ik::IkSolutions<N, K>,
-    set: &[([[f64; 4]; 4], [f64; N])],
-) {
-    let (mut all, mut exact, mut found) = (0, 0, 0);
-    for (pose, q) in set {
-        let sols = ik(pose);
-        all += sols.len();
-        for b in sols.exact() {
-            let e = miss(robot, &b.q, pose);
-            assert!(e <= 1e-10, "{name}: an exact solution {e:e} off");
-            exact += 1;
-        }
-        if sols.exact().any(|b| same(&b.q, q)) {
-            found += 1;
-        }
-    }
-    println!(
-        "{name}: {} poses, {all} solutions, {exact} exact, generating configuration found {found}/{}",
-        set.len(),
-        set.len()
-    );
-    assert_eq!(
-        found,
-        set.len(),
-        "{name}: a generating configuration was not found"
-    );
-}
 
 fn bench(c: &mut Criterion) {
     let n = poses_count();
@@ -74,14 +32,21 @@ fn bench(c: &mut Criterion) {
     let skew_set = poses(&skew, 27, n);
     let offset_set = poses(&offset, 27, n);
     let ur5_set = poses(&ur5, 27, n);
-    check("skew_shoulder (SP5)", &skew, |p| skew.ik(p), &skew_set);
-    check(
+    check_solutions(
+        "skew_shoulder (SP5)",
+        &skew,
+        |p, _| skew.ik(p),
+        &skew_set,
+        0,
+    );
+    check_solutions(
         "ur5e_wrist_offset (SP6)",
         &offset,
-        |p| offset.ik(p),
+        |p, _| offset.ik(p),
         &offset_set,
+        0,
     );
-    check("ur5", &ur5, |p| ur5.ik(p), &ur5_set);
+    check_solutions("ur5", &ur5, |p, _| ur5.ik(p), &ur5_set, 0);
     let mut g = c.benchmark_group("ik_quartic_1000_poses");
     g.bench_function("skew_shoulder_sp5_ik", |b| {
         b.iter(|| {

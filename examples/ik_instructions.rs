@@ -7,7 +7,7 @@
 //! Run: `cargo build --release --example ik_instructions`, then
 //! `valgrind --tool=callgrind target/release/examples/ik_instructions ur5` (or `puma560`,
 //! `panda`, the quartic families' `skew_shoulder` and `ur5e_wrist_offset`, `widowx250`,
-//! `iiwa_arm_angle`):
+//! `iiwa_arm_angle`, the general 6R's `kinova_jaco`):
 //! instructions per `ik` = the total / 20 000 (the set-up adds under 1 %). Without
 //! valgrind it prints the time per `ik` too (a rough figure: criterion's is the one
 //! `BENCHMARKS.md` reports).
@@ -16,7 +16,9 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use kinegen::Kinematics;
-use kinegen_robots::{KukaIiwa14, Panda, Puma560, SkewShoulder, Ur5, Ur5eWristOffset, WidowX250};
+use kinegen_robots::{
+    KinovaJaco, KukaIiwa14, Panda, Puma560, SkewShoulder, Ur5, Ur5eWristOffset, WidowX250,
+};
 
 // The bench's own poses (fk of configurations drawn within the limits, seeded).
 #[path = "../benches/common/ik.rs"]
@@ -58,9 +60,10 @@ fn main() {
             black_box(r.ik_arm_angle(p, r.arm_angle(q).unwrap_or(0.0))).len()
         }),
         Some("widowx250") => run(&WidowX250::default(), |r, p, _| black_box(r.ik(p)).len()),
+        Some("kinova_jaco") => run(&KinovaJaco::default(), |r, p, _| black_box(r.ik(p)).len()),
         Some(other) => {
             eprintln!(
-                "unknown robot {other:?}: ur5, puma560, panda, skew_shoulder, ur5e_wrist_offset, widowx250 or iiwa_arm_angle"
+                "unknown robot {other:?}: ur5, puma560, panda, skew_shoulder, ur5e_wrist_offset, widowx250, kinova_jaco or iiwa_arm_angle"
             );
             std::process::exit(2);
         }

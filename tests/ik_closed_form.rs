@@ -434,14 +434,7 @@ fn kinova_gen3_joint_7_free() {
     for _ in 0..CASES {
         let q = configuration(&mut rng, &KinovaGen3::LIMITS, &KinovaGen3::REVOLUTE);
         let pose = robot.fk(&q);
-        let j = robot.jacobian(&q);
-        let mut m = [[0.0; 6]; 6];
-        for r in 0..6 {
-            for (c, i) in (0..7).filter(|&i| i != k).enumerate() {
-                m[r][c] = j[r][i];
-            }
-        }
-        let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+        let singular = singular_with_locked(&robot.jacobian(&q), k);
         let sols = robot.ik_with(&pose, q[k]);
         let near = robot.ik_near(&pose, &q);
         general_check(
@@ -497,6 +490,18 @@ self_test!(
     false
 );
 
+/// A 7-joint arm locked at joint `k` is singular: its 6 × 6 Jacobian (`j` without joint
+/// `k`'s column) has a determinant below [`SINGULAR`].
+fn singular_with_locked(j: &[[f64; 7]; 6], k: usize) -> bool {
+    let mut m = [[0.0; 6]; 6];
+    for r in 0..6 {
+        for (c, i) in (0..7).filter(|&i| i != k).enumerate() {
+            m[r][c] = j[r][i];
+        }
+    }
+    kinegen::math::det_lu(m).abs() <= SINGULAR
+}
+
 /// A 7-joint arm's self-test with its free joint (`IK_FREE`) locked at the generating
 /// value: the six others in closed form. `snap_free`: the free joint is also snapped to
 /// `value` in every case (the regression at a value where the locked arm degenerates).
@@ -531,14 +536,7 @@ macro_rules! locked_self_test {
                     q[k] = v;
                 }
                 let pose = robot.fk(&q);
-                let j = robot.jacobian(&q);
-                let mut m = [[0.0; 6]; 6];
-                for r in 0..6 {
-                    for (c, i) in (0..7).filter(|&i| i != k).enumerate() {
-                        m[r][c] = j[r][i];
-                    }
-                }
-                let singular = kinegen::math::det_lu(m).abs() <= SINGULAR;
+                let singular = singular_with_locked(&robot.jacobian(&q), k);
                 let sols = robot.ik_with(&pose, q[k]);
                 let near = robot.ik_near(&pose, &q);
                 check(

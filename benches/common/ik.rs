@@ -1,5 +1,5 @@
-//! What the closed-form IK benches share (`#[path]`-included by `benches/ik_closed_form.rs`
-//! and `benches/ik-geo/benches/ik_geo.rs`): the poses every contender solves, and how a
+//! What the closed-form IK benches share (`#[path]`-included by `benches/ik_closed_form.rs`,
+//! `benches/ik_quartic.rs`, `benches/ik_general.rs` and `benches/ik-geo/benches/ik_geo.rs`): the poses every contender solves, and how a
 //! solution is judged, for any joint count (six-joint arms, the seven-joint Panda).
 
 use std::f64::consts::PI;
@@ -43,4 +43,52 @@ pub fn same<const N: usize>(a: &[f64; N], b: &[f64; N]) -> bool {
         let d = x - y;
         (d - 2.0 * PI * (d / (2.0 * PI)).round()).abs() < 1e-6
     })
+}
+
+/// 1 000 poses when timing (`cargo bench`), 50 when CI runs the bench once as a test.
+pub fn poses_count() -> usize {
+    if std::env::args().any(|a| a == "--bench") {
+        1000
+    } else {
+        50
+    }
+}
+
+/// A bench's one-off check of a closed-form `ik(pose, q)` (`q` the generating
+/// configuration) on `set`: every exact solution within 1e-10 of its pose, the counts
+/// printed (solutions, exact ones, poses by exact count, poses whose generating
+/// configuration is found), and at most `most_missed` poses without it.
+pub fn check_solutions<const N: usize, const K: usize, R: Kinematics<N>>(
+    name: &str,
+    robot: &R,
+    ik: impl Fn(&[[f64; 4]; 4], &[f64; N]) -> kinegen::ik::IkSolutions<N, K>,
+    set: &[([[f64; 4]; 4], [f64; N])],
+    most_missed: usize,
+) {
+    let (mut all, mut exact, mut found) = (0, 0, 0);
+    let mut counts = [0usize; 17];
+    for (pose, q) in set {
+        let sols = ik(pose, q);
+        all += sols.len();
+        counts[sols.exact().count().min(16)] += 1;
+        for b in sols.exact() {
+            let e = miss(robot, &b.q, pose);
+            assert!(e <= 1e-10, "{name}: an exact solution {e:e} off");
+            exact += 1;
+        }
+        if sols.exact().any(|b| same(&b.q, q)) {
+            found += 1;
+        }
+    }
+    println!(
+        "{name}: {} poses, {all} solutions, {exact} exact, generating configuration found \
+         {found}/{}; poses by exact count (0..16): {counts:?}",
+        set.len(),
+        set.len()
+    );
+    assert!(
+        set.len() - found <= most_missed,
+        "{name}: {} generating configurations not found",
+        set.len() - found
+    );
 }

@@ -239,13 +239,29 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
         };
     }
     if pr.plan.solver == "general_6r" {
-        return general(pr, &pose, checks);
+        // One run-time robot per call: the hint only saves time within it.
+        let hint = families::Hint::new();
+        return six_or_locked::<16>(pr, checks, |g, free| {
+            let mut c = Candidates::default();
+            families::general_6r(g, &pose, free, &hint, &mut c);
+            Some(c)
+        });
     }
-    match (n, pr.plan.locked) {
+    six_or_locked::<8>(pr, checks, |g, free| six(pr.plan, g, &pose, free))
+}
+
+/// A 6-joint solver's candidates on the robot's six joints, or on a 7-joint arm's six
+/// with the locked one at `pr.q_locked`, finished.
+fn six_or_locked<const K: usize>(
+    pr: &DynProblem,
+    checks: &Checks,
+    solve: impl Fn(&Geometry<6>, &[f64; 6]) -> Option<Candidates<6, K>>,
+) -> Result<Vec<DynBranch>, &'static str> {
+    match (pr.geometry.h.len(), pr.plan.locked) {
         (6, None) => {
             let g = geometry::<6>(pr.geometry);
             let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
-            let c = six(pr.plan, &g, &pose, &free).ok_or("unknown solver")?;
+            let c = solve(&g, &free).ok_or("unknown solver")?;
             Ok(finished(&c, pr, checks))
         }
         (7, Some(k)) => {
@@ -253,38 +269,11 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
             let g: Geometry<6> = g7.lock(k, pr.q_locked);
             let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
             let free: [f64; 6] = without(&free7, k);
-            let c6 = six(pr.plan, &g, &pose, &free).ok_or("unknown solver")?;
-            let c = with_locked::<6, 7, 8>(&c6, k, pr.q_locked);
+            let c6 = solve(&g, &free).ok_or("unknown solver")?;
+            let c = with_locked::<6, 7, K>(&c6, k, pr.q_locked);
             Ok(finished(&c, pr, checks))
         }
         _ => Err("closed-form IK is for 6 joints, or 7 with one locked"),
-    }
-}
-
-/// The general 6R (six joints, or seven with one locked): up to 16 solutions.
-fn general(pr: &DynProblem, pose: &Pose, checks: &Checks) -> Result<Vec<DynBranch>, &'static str> {
-    // One run-time robot per process call: the hint only saves time within it.
-    let hint = families::Hint::new();
-    let n = pr.geometry.h.len();
-    match (n, pr.plan.locked) {
-        (6, None) => {
-            let g = geometry::<6>(pr.geometry);
-            let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
-            let mut c = Candidates::<6, 16>::default();
-            families::general_6r(&g, pose, &free, &hint, &mut c);
-            Ok(finished(&c, pr, checks))
-        }
-        (7, Some(k)) => {
-            let g7 = geometry::<7>(pr.geometry);
-            let g: Geometry<6> = g7.lock(k, pr.q_locked);
-            let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
-            let free: [f64; 6] = without(&free7, k);
-            let mut c6 = Candidates::<6, 16>::default();
-            families::general_6r(&g, pose, &free, &hint, &mut c6);
-            let c = with_locked::<6, 7, 16>(&c6, k, pr.q_locked);
-            Ok(finished(&c, pr, checks))
-        }
-        _ => Err("the general 6R is for 6 joints, or 7 with one locked"),
     }
 }
 
