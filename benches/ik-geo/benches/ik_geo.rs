@@ -68,9 +68,16 @@ fn target(g: &Geometry<6>, pose: &[[f64; 4]; 4]) -> (Matrix3<f64>, Vector3<f64>)
     )
 }
 
-fn check_fk(name: &str, robot: &Robot, g: &Geometry<6>, set: &[([[f64; 4]; 4], [f64; 6])]) {
+fn check_fk(
+    name: &str,
+    robot: &Robot,
+    g: &Geometry<6>,
+    set: &[([[f64; 4]; 4], [f64; 6])],
+    shift: &[f64; 6],
+) {
     for (pose, q) in set {
-        let (r, t) = robot.fk(q);
+        let q: [f64; 6] = std::array::from_fn(|i| q[i] - shift[i]);
+        let (r, t) = robot.fk(&q);
         let (r0, t0) = target(g, pose);
         let d = (r - r0).amax() + (t - t0).amax();
         assert!(
@@ -87,15 +94,16 @@ fn report<R: Kinematics<6>>(
     geo: &Robot,
     g: &Geometry<6>,
     set: &[([[f64; 4]; 4], [f64; 6])],
+    shift: &[f64; 6],
 ) {
-    check_fk(name, geo, g, set);
+    check_fk(name, geo, g, set, shift);
     let mut tally = [[0usize; 4]; 2]; // solutions, flagged exact, exact by fk, generating q found
     for (pose, q0) in set {
         let (r, t) = target(g, pose);
         let theirs: Vec<([f64; 6], bool)> = geo
             .ik(r, t)
             .into_iter()
-            .map(|(q, ls): (Vector6<f64>, bool)| (std::array::from_fn(|i| q[i]), !ls))
+            .map(|(q, ls): (Vector6<f64>, bool)| (std::array::from_fn(|i| q[i] + shift[i]), !ls))
             .collect();
         for (k, sols) in [ours(pose), theirs].iter().enumerate() {
             tally[k][0] += sols.len();
@@ -133,6 +141,7 @@ fn bench(c: &mut Criterion) {
         &geo_ur5,
         &gu,
         &ur5_set,
+        &[0.0; 6],
     );
     report(
         "PUMA 560",
@@ -141,6 +150,7 @@ fn bench(c: &mut Criterion) {
         &geo_puma,
         &gp,
         &puma_set,
+        &[0.0; 6],
     );
     let ur5_targets: Vec<_> = ur5_set.iter().map(|(p, _)| target(&gu, p)).collect();
     let puma_targets: Vec<_> = puma_set.iter().map(|(p, _)| target(&gp, p)).collect();
@@ -210,6 +220,22 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
+/// `g` with joint `j`'s zero turned by `phi`: every axis, point and the tool after it
+/// turned about axis `j` by `phi`, so that the new geometry at `q` is the old one at `q`
+/// with `q_j + phi`.
+fn rezeroed(g: &Geometry<6>, j: usize, phi: f64) -> Geometry<6> {
+    let r = kinegen::ik::geometry::rot(&g.h[j], phi);
+    let o = g.p[j];
+    let mut out = *g;
+    for k in j + 1..6 {
+        out.h[k] = r * g.h[k];
+        out.p[k] = r * (g.p[k] - o) + o;
+    }
+    out.r_tool = r * g.r_tool;
+    out.p_tool = r * (g.p_tool - o) + o;
+    out
+}
+
 /// The general 6R (issue 28): kinegen's `ik` (Raghavan–Roth elimination, an
 /// eigenproblem) against ik-geo's 1-D search for arms with h2 ∥ h3 (`two_parallel`: a
 /// search over q1 for sign changes of an error function — both the Jaco and the
@@ -218,7 +244,14 @@ fn bench(c: &mut Criterion) {
 fn bench_general(c: &mut Criterion) {
     let jaco = KinovaJaco::default();
     let crx = FanucCrx10iaL::default();
-    let (gj, gc) = (jaco.ik_geometry(), crx.ik_geometry());
+    // Both arms have h4 ∥ h6 at q = 0, where ik-geo's SP6 (about h4 and h6) degenerates
+    // and it finds nothing: it is given the geometry with joint 5's zero turned by π/2
+    // (its q5 = ours − π/2), its answers mapped back.
+    let shift = [0.0, 0.0, 0.0, 0.0, std::f64::consts::FRAC_PI_2, 0.0];
+    let (gj, gc) = (
+        rezeroed(&jaco.ik_geometry(), 4, shift[4]),
+        rezeroed(&crx.ik_geometry(), 4, shift[4]),
+    );
     let (hj, pj) = poe(&gj, false);
     let (hc, pc) = poe(&gc, false);
     let jaco_1d = ik_geo::robot::two_parallel(hj, pj);
@@ -260,8 +293,17 @@ fn bench_general(c: &mut Criterion) {
         &jaco_1d,
         &gj,
         &jaco_set,
+        &shift,
     );
-    report("CRX,  ik-geo 1-D", &crx, ours_crx, &crx_1d, &gc, &crx_set);
+    report(
+        "CRX,  ik-geo 1-D",
+        &crx,
+        ours_crx,
+        &crx_1d,
+        &gc,
+        &crx_set,
+        &shift,
+    );
     report(
         "Jaco, ik-geo 2-D",
         &jaco,
@@ -269,6 +311,7 @@ fn bench_general(c: &mut Criterion) {
         &jaco_2d,
         &gj,
         &jaco_set[..10],
+        &shift,
     );
     report(
         "CRX,  ik-geo 2-D",
@@ -277,6 +320,7 @@ fn bench_general(c: &mut Criterion) {
         &crx_2d,
         &gc,
         &crx_set[..10],
+        &shift,
     );
     println!(
         "timed: {} Jaco poses, {} CRX poses (1-D); the first 10 of each (2-D)",

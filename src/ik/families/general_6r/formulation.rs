@@ -43,7 +43,7 @@ impl Link {
     }
 }
 
-/// One way to write the loop as Raghavan and Roth's two sides (see [`Formulation::new`]):
+/// One way to write the loop as Raghavan and Roth's two sides (see the module):
 /// the joint whose axis gives `(p, l)` (eliminated first), and whether the three-joint side
 /// comes after the split (else before). Twelve in all; a special geometry (two parallel
 /// axes, a 60° wrist) makes some of them degenerate — six dependent equations, or a
