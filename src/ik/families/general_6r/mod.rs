@@ -31,6 +31,16 @@
 //! 6. each branch is polished by Newton steps on `fk` and checked there
 //!    ([`Fit::Checked`]): the eigenvalues carry rounding the back-substitution amplifies.
 //!
+//! That is Raghavan and Roth's own form; the loop can be carried round from any joint and
+//! split after two joints or three — twelve forms ([`FORMULATIONS`], `formulation.rs`).
+//! Special geometry makes some of them degenerate for every pose (the Jaco: ten of
+//! twelve), and special poses (joints at right angles, the tool along axis 1) all of them
+//! or nearly: the first regular form is used and remembered ([`Hint`]); where it is ill
+//! conditioned for a pose, the best conditioned form; where every form degenerates, the
+//! solutions of the pose moved off by ±1e-4 and ±1e-3, tracked back by Newton steps.
+//! Branches within 2e-6 rad are one double root (merged, flagged singular), as is a branch
+//! whose Jacobian is singular to rounding (Hadamard's ratio below 1e-7).
+//!
 //! Everything here runs on the numbers of the geometry: the engine's part, at expansion
 //! time, is to prove that no family of subproblems fits (either way round) and that every
 //! joint is revolute. No allocation: every matrix is on the stack (the 24 × 24 companion
