@@ -334,33 +334,34 @@ fn pencil(left: &[[[f64; 9]; EQS]; 3]) -> [SMatrix<f64, 12, 12>; 3] {
                 }
             }
         }
-        let mut u = [[[0.0; 3]; 3]; 3];
-        for i3 in 0..3 {
-            for k3 in 0..3 {
-                for k4 in 0..3 {
-                    for k5 in 0..3 {
-                        u[i3][k4][k5] += h3[i3][k3] * t[k3][k4][k5];
-                    }
-                }
-            }
-        }
-        let mut w = [[[0.0; 3]; 3]; 3];
-        for i3 in 0..3 {
-            for i4 in 0..3 {
-                for k4 in 0..3 {
-                    for k5 in 0..3 {
-                        w[i3][i4][k5] += h4[i4][k4] * u[i3][k4][k5];
-                    }
-                }
-            }
-        }
+        let x = along(&h5, &along(&h4, &along(&h3, &t, 0), 1), 2);
         for (i3, m) in out.iter_mut().enumerate() {
             for i4 in 0..3 {
                 for i5 in 0..3 {
-                    let sum: f64 = (0..3).map(|k5| h5[i5][k5] * w[i3][i4][k5]).sum();
-                    m[(e, 3 * i4 + i5)] = sum;
-                    m[(LEFT + e, 3 * (i4 + 1) + i5)] = sum;
+                    m[(e, 3 * i4 + i5)] = x[i3][i4][i5];
+                    m[(LEFT + e, 3 * (i4 + 1) + i5)] = x[i3][i4][i5];
                 }
+            }
+        }
+    }
+    out
+}
+
+/// `t` with the matrix `h` applied along its index `axis` (0, 1 or 2): one variable's
+/// half-angle substitution.
+fn along(h: &[[f64; 3]; 3], t: &[[[f64; 3]; 3]; 3], axis: usize) -> [[[f64; 3]; 3]; 3] {
+    let mut out = [[[0.0; 3]; 3]; 3];
+    for (a, plane) in out.iter_mut().enumerate() {
+        for (b, row) in plane.iter_mut().enumerate() {
+            for (c, x) in row.iter_mut().enumerate() {
+                let at = [a, b, c];
+                *x = (0..3)
+                    .map(|k| {
+                        let mut j = at;
+                        j[axis] = k;
+                        h[at[axis]][k] * t[j[0]][j[1]][j[2]]
+                    })
+                    .sum();
             }
         }
     }
