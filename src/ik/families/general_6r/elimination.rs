@@ -94,21 +94,21 @@ pub(super) struct System {
     /// The smallest over the largest pivot of the companion's lead matrix: how far the
     /// pencil is from singular.
     pub(super) ratio: f64,
-    /// Joints: the eigen joint, the three-joint side's outer and inner sampled joints,
-    /// the two-joint side's first and second sampled joints.
+    /// Joints: the eigen joint, the three-joint side's two sampled joints and the
+    /// two-joint side's (each innermost first, as `sample` returns them).
     pub(super) joints: [usize; 5],
     /// The joint carried round the loop.
     pub(super) eliminated: usize,
 }
 
-/// Samples a side's links on the grid of its two turns (other than `skip`, the eigen
-/// joint's, applied outside): the sampled joints (first, second) and the points and
+/// Samples a side's links (innermost first: two turns, perhaps the fixed link) on the
+/// grid of its two turns: the sampled joints (first, second) and the points and
 /// directions at `samples[3 i + j]`.
-fn sample(links: &[Link], start: &(V3, V3), skip: Option<usize>) -> ([usize; 2], [(V3, V3); 9]) {
+fn sample(links: &[Link], start: &(V3, V3)) -> ([usize; 2], [(V3, V3); 9]) {
     let mut turns = [usize::MAX; 2];
     let mut n = 0;
     for (i, l) in links.iter().enumerate() {
-        if matches!(l, Link::Turn { .. }) && Some(i) != skip {
+        if matches!(l, Link::Turn { .. }) {
             turns[n] = i;
             n += 1;
         }
@@ -118,9 +118,6 @@ fn sample(links: &[Link], start: &(V3, V3), skip: Option<usize>) -> ([usize; 2],
         for j in 0..3 {
             let (mut p, mut l) = *start;
             for (k, link) in links.iter().enumerate() {
-                if Some(k) == skip {
-                    continue;
-                }
                 let g = if k == turns[0] {
                     i
                 } else if k == turns[1] {
@@ -163,14 +160,14 @@ impl System {
         let unit = if size > 0.0 { 1.0 / size } else { 1.0 };
         let rel = |(p, l): &(V3, V3)| ((p - o) * unit, *l);
         // The two-joint side on its grid.
-        let (two_joints, at) = sample(two, &sides.start, None);
+        let (two_joints, at) = sample(two, &sides.start);
         let right = fourier(&at.map(|x| {
             let (p, l) = rel(&x);
             fourteen(&p, &l)
         }));
         // The three-joint side on the grid of its inner turns, then the eigen joint's turn
         // split into its parts along the axis (1), across it (cos) and `he ×` (sin).
-        let (three_joints, at) = sample(&three[..eigen], &sides.start, None);
+        let (three_joints, at) = sample(&three[..eigen], &sides.start);
         let mut parts = [[[0.0; EQS]; 9]; 3];
         for (s, x) in at.iter().enumerate() {
             let (p, l) = rel(x);
@@ -196,8 +193,7 @@ impl System {
                 products[e][m] = -right[e][m + 1];
             }
         }
-        let r = eliminate(&mut products, &mut left);
-        let r = r?;
+        let r = eliminate(&mut products, &mut left)?;
         let pencil = pencil(&left);
         // The companion of the better-conditioned end: x or 1/x (a root near x = ∞);
         // both singular, the pencil is (every x a root: a degenerate formulation).

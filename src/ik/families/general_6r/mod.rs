@@ -95,9 +95,9 @@ pub fn general_6r<const K: usize>(
     out: &mut Candidates<6, K>,
 ) {
     let mut found = Found::default();
-    let reaches = |q: &[f64; 6]| miss(g, q, pose) <= REACHES * (1.0 + pose.p.amax());
+    let reached = |q: &[f64; 6]| reaches(g, q, pose);
     let conditioning = eliminate_and_solve(g, pose, free, hint, &mut found);
-    if conditioning < WELL_CONDITIONED || !found.as_slice().iter().any(|c| reaches(&c.q)) {
+    if conditioning < WELL_CONDITIONED || !found.as_slice().iter().any(|c| reached(&c.q)) {
         // Every form's pencil singular or nearly so for this pose (special poses: the
         // tool along axis 1, joints at right angles — the elimination loses roots there,
         // though the solutions are isolated), or no branch reaches the pose (out of reach,
@@ -127,7 +127,7 @@ pub fn general_6r<const K: usize>(
                     // the nearest, flagged so; `finish` drops them where a branch reaches.
                     found.push(
                         q,
-                        if reaches(&q) {
+                        if reached(&q) {
                             Fit::Free
                         } else {
                             Fit::LeastSquares
@@ -143,14 +143,13 @@ pub fn general_6r<const K: usize>(
     // direction the pose does not see), else it is added — a point of a continuum of
     // solutions. Either way `ik_near` stays where it is.
     let here = free.map(wrap);
-    if reaches(&here) {
-        let near = |c: &&mut crate::ik::solutions::Candidate<6>| {
-            c.q.iter()
-                .zip(&here)
-                .all(|(a, b)| abs(wrap(a - b)) < DOUBLE_ROOT)
-        };
+    if reached(&here) {
         let room = found.as_slice().len() < FOUND;
-        match found.as_mut_slice().iter_mut().find(|c| near(c)) {
+        match found
+            .as_mut_slice()
+            .iter_mut()
+            .find(|c| within(&c.q, &here, DOUBLE_ROOT))
+        {
             Some(c) => c.q = here,
             None if room => found.push(here, Fit::Free),
             None => {}
@@ -188,12 +187,7 @@ fn merge_double_roots(g: &Geometry<6>, pose: &Pose, found: &mut Found) {
         }
         let (mut sum, mut count, mut fit) = (items[i].q, 1.0, items[i].fit);
         for j in i + 1..items.len() {
-            let close = items[i]
-                .q
-                .iter()
-                .zip(&items[j].q)
-                .all(|(a, b)| abs(wrap(a - b)) < DOUBLE_ROOT);
-            if !used[j] && close {
+            if !used[j] && within(&items[i].q, &items[j].q, DOUBLE_ROOT) {
                 used[j] = true;
                 for (s, (a, b)) in sum.iter_mut().zip(items[i].q.iter().zip(&items[j].q)) {
                     // Whole turns apart counts as near: add the difference, not the value.
@@ -334,7 +328,7 @@ fn solve_with(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], sys: &System, found
             // A root off the real line, or a vector of a two-dimensional null space (one
             // of them may be a neighbouring root's), is a solution only where it reaches
             // the pose.
-            if (im > REAL || count == 2) && miss(g, &q, pose) > REACHES * (1.0 + pose.p.amax()) {
+            if (im > REAL || count == 2) && !reaches(g, &q, pose) {
                 continue;
             }
             // A split root with one null vector is one configuration where two solutions
@@ -358,7 +352,17 @@ const POLISHED: f64 = 1e-13;
 
 /// Two configurations within rounding of each other (whole turns apart counts as one).
 fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
-    a.iter().zip(b).all(|(x, y)| abs(wrap(x - y)) < 1e-7)
+    within(a, b, 1e-7)
+}
+
+/// Every joint of `a` within `tol` radians of `b`'s, whole turns apart counting as none.
+fn within(a: &[f64; 6], b: &[f64; 6], tol: f64) -> bool {
+    a.iter().zip(b).all(|(x, y)| abs(wrap(x - y)) < tol)
+}
+
+/// `q` reaches `pose`: [`miss`] within [`REACHES`] of the pose's size.
+fn reaches(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> bool {
+    miss(g, q, pose) <= REACHES * (1.0 + pose.p.amax())
 }
 
 /// How far `fk(q)` is from `pose`: position (in the arm's units) plus rotation.
