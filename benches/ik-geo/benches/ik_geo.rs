@@ -266,14 +266,11 @@ fn bench_general(c: &mut Criterion) {
     };
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let mut keep = |robot_set: Vec<([[f64; 4]; 4], [f64; 6])>, g: &Geometry<6>, name: &str| {
-        let before = robot_set.len();
-        let kept: Vec<_> = robot_set
+    let keep = |set: Vec<([[f64; 4]; 4], [f64; 6])>, geo: &Robot, g: &Geometry<6>, name: &str| {
+        let before = set.len();
+        let kept: Vec<_> = set
             .into_iter()
-            .filter(|(p, _)| {
-                let geo_1d = ik_geo::robot::two_parallel(poe(g, false).0, poe(g, false).1);
-                survives(&geo_1d, g, p)
-            })
+            .filter(|(p, _)| survives(geo, g, p))
             .collect();
         println!(
             "{name}: ik-geo's two_parallel panicked on {} of {before} poses (left out)",
@@ -281,8 +278,8 @@ fn bench_general(c: &mut Criterion) {
         );
         kept
     };
-    let jaco_set = keep(poses(&jaco, 28, 100), &gj, "Jaco");
-    let crx_set = keep(poses(&crx, 28, 100), &gc, "CRX");
+    let jaco_set = keep(poses(&jaco, 28, 100), &jaco_1d, &gj, "Jaco");
+    let crx_set = keep(poses(&crx, 28, 100), &crx_1d, &gc, "CRX");
     std::panic::set_hook(hook);
     let ours_jaco = |p: &[[f64; 4]; 4]| jaco.ik(p).iter().map(|b| (b.q, b.exact)).collect();
     let ours_crx = |p: &[[f64; 4]; 4]| crx.ik(p).iter().map(|b| (b.q, b.exact)).collect();
@@ -331,60 +328,76 @@ fn bench_general(c: &mut Criterion) {
     let tc: Vec<_> = crx_set.iter().map(|(p, _)| target(&gc, p)).collect();
     let mut g = c.benchmark_group("ik_general_6r_1d");
     g.sample_size(10);
-    for (name, robot_set, geo, targets) in [("jaco", 0, &jaco_1d, &tj), ("crx", 1, &crx_1d, &tc)] {
-        g.bench_function(format!("{name}_kinegen_ik"), |b| {
-            b.iter(|| {
-                if robot_set == 0 {
-                    for (pose, _) in &jaco_set {
-                        black_box(jaco.ik(black_box(pose)));
-                    }
-                } else {
-                    for (pose, _) in &crx_set {
-                        black_box(crx.ik(black_box(pose)));
-                    }
-                }
-            })
-        });
-        g.bench_function(format!("{name}_ik_geo_two_parallel_1d"), |b| {
-            b.iter(|| {
-                for (r, t) in targets.iter() {
-                    black_box(geo.ik(black_box(*r), black_box(*t)));
-                }
-            })
-        });
-    }
+    let jaco_ik = |p: &[[f64; 4]; 4]| jaco.ik(p);
+    let crx_ik = |p: &[[f64; 4]; 4]| crx.ik(p);
+    side_by_side(
+        &mut g,
+        "jaco",
+        "ik_geo_two_parallel_1d",
+        &jaco_set,
+        jaco_ik,
+        &jaco_1d,
+        &tj,
+    );
+    side_by_side(
+        &mut g,
+        "crx",
+        "ik_geo_two_parallel_1d",
+        &crx_set,
+        crx_ik,
+        &crx_1d,
+        &tc,
+    );
     g.finish();
     let mut g = c.benchmark_group("ik_general_6r_2d_10_poses");
     g.sample_size(10);
-    g.bench_function("jaco_kinegen_ik", |b| {
-        b.iter(|| {
-            for (pose, _) in &jaco_set[..10] {
-                black_box(jaco.ik(black_box(pose)));
-            }
-        })
-    });
-    g.bench_function("jaco_ik_geo_gen_six_dof_2d", |b| {
-        b.iter(|| {
-            for (r, t) in &tj[..10] {
-                black_box(jaco_2d.ik(black_box(*r), black_box(*t)));
-            }
-        })
-    });
-    g.bench_function("crx_kinegen_ik", |b| {
-        b.iter(|| {
-            for (pose, _) in &crx_set[..10] {
-                black_box(crx.ik(black_box(pose)));
-            }
-        })
-    });
-    g.bench_function("crx_ik_geo_gen_six_dof_2d", |b| {
-        b.iter(|| {
-            for (r, t) in &tc[..10] {
-                black_box(crx_2d.ik(black_box(*r), black_box(*t)));
-            }
-        })
-    });
+    let (j10, c10) = (&jaco_set[..10], &crx_set[..10]);
+    side_by_side(
+        &mut g,
+        "jaco",
+        "ik_geo_gen_six_dof_2d",
+        j10,
+        jaco_ik,
+        &jaco_2d,
+        &tj[..10],
+    );
+    side_by_side(
+        &mut g,
+        "crx",
+        "ik_geo_gen_six_dof_2d",
+        c10,
+        crx_ik,
+        &crx_2d,
+        &tc[..10],
+    );
     g.finish();
+}
+
+/// Times `{name}_kinegen_ik` (`ours` on every pose of `set`) and `{name}_{contender}`
+/// (`geo` on the same poses as ik-geo's targets) in `group`.
+fn side_by_side<T>(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    name: &str,
+    contender: &str,
+    set: &[([[f64; 4]; 4], [f64; 6])],
+    ours: impl Fn(&[[f64; 4]; 4]) -> T,
+    geo: &Robot,
+    targets: &[(Matrix3<f64>, Vector3<f64>)],
+) {
+    group.bench_function(format!("{name}_kinegen_ik"), |b| {
+        b.iter(|| {
+            for (pose, _) in set {
+                black_box(ours(black_box(pose)));
+            }
+        })
+    });
+    group.bench_function(format!("{name}_{contender}"), |b| {
+        b.iter(|| {
+            for (r, t) in targets {
+                black_box(geo.ik(black_box(*r), black_box(*t)));
+            }
+        })
+    });
 }
 
 criterion_group!(benches, bench, bench_general);
