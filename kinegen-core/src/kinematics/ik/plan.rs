@@ -118,18 +118,13 @@ impl Family {
         }
     }
 
-    /// The family's first step is a quartic (SP5 or SP6): chosen only where no family of
-    /// quadratics fits, either way round or with any joint locked.
-    pub fn quartic(&self) -> bool {
-        matches!(self, Family::Spherical | Family::ThreeParallel)
-    }
-
-    /// How the family's first step is solved: 0 quadratics, 1 a quartic, 2 the general
-    /// 6R's eigenproblem. A 7-joint arm is locked where the lowest tier fits.
+    /// How the family's first step is solved: 0 quadratics, 1 a quartic (SP5 or SP6),
+    /// 2 the general 6R's eigenproblem. A family of a higher tier is chosen only where
+    /// none of a lower one fits, either way round or with any joint locked.
     pub fn tier(&self) -> u8 {
         match self {
             Family::General6r => 2,
-            f if f.quartic() => 1,
+            Family::Spherical | Family::ThreeParallel => 1,
             _ => 0,
         }
     }
