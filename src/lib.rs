@@ -41,7 +41,8 @@
 //! pseudo-inverses, damped least squares), [`forces`], [`manipulability`], [`ik`],
 //! [`control`], [`trajectory`], and on the generated second order
 //! ([`SecondOrderKinematics`]) [`acceleration`] (resolved-acceleration control) and
-//! [`redundancy`] (gradient projection); [`math`] is what the generated code calls.
+//! [`redundancy`] (gradient projection); [`math`] and [`jacobian_rates`] (the second
+//! order of chains too long for closed forms) are what the generated code calls.
 #![no_std]
 #![warn(missing_docs)]
 
@@ -60,6 +61,7 @@ pub mod control;
 pub mod error;
 pub mod forces;
 pub mod ik;
+pub mod jacobian_rates;
 pub mod linalg;
 pub mod manipulability;
 pub mod math;

@@ -158,14 +158,35 @@ fn second_order(
 ) -> SecondOrderValues {
     let (model, s) = (&derived.model, &derived.second);
     let n = chain.dof();
-    let hessian: Vec<Vec<Vec<f64>>> = s.hessian.iter().map(|h| rows(model, chain, q, h)).collect();
-    let jacobian_dot = qd.map(|qd| {
-        s.jacobian_dot
-            .iter()
-            .map(|r| model.eval_with_rates(chain, q, Some(qd), r))
-            .collect()
-    });
-    let jdot_qdot = qd.map(|qd| model.eval_with_rates(chain, q, Some(qd), &s.jdot_qdot));
+    let (hessian, jacobian_dot, jdot_qdot) = if s.from_jacobian.is_some() {
+        // Left to run time: what the generated methods compute from J's columns.
+        let hessian = hessian_of(jacobian);
+        let jacobian_dot: Option<Vec<Vec<f64>>> = qd.map(|qd| {
+            (0..6)
+                .map(|r| {
+                    (0..n)
+                        .map(|i| (0..n).map(|k| hessian[k][r][i] * qd[k]).sum())
+                        .collect()
+                })
+                .collect()
+        });
+        let jdot_qdot = jacobian_dot.as_ref().zip(qd).map(|(jd, qd)| {
+            jd.iter()
+                .map(|row: &Vec<f64>| row.iter().zip(qd).map(|(a, b)| a * b).sum())
+                .collect()
+        });
+        (hessian, jacobian_dot, jdot_qdot)
+    } else {
+        let hessian = s.hessian.iter().map(|h| rows(model, chain, q, h)).collect();
+        let jacobian_dot = qd.map(|qd| {
+            s.jacobian_dot
+                .iter()
+                .map(|r| model.eval_with_rates(chain, q, Some(qd), r))
+                .collect()
+        });
+        let jdot_qdot = qd.map(|qd| model.eval_with_rates(chain, q, Some(qd), &s.jdot_qdot));
+        (hessian, jacobian_dot, jdot_qdot)
+    };
     let det_gradient = match &derived.det_gradient {
         Some(Ok(g)) => Some(model.eval(chain, q, &g.gradient)),
         _ => None,
@@ -189,6 +210,42 @@ fn second_order(
         jdot_qdot,
         det_gradient,
     }
+}
+
+/// `H[k] = ∂J/∂q_k` from J's values (rows `[v; ω]`), by the formulas
+/// `kinegen::jacobian_rates::hessian` evaluates: `∂J_i/∂q_k = [ω_k × v_i; ω_k × ω_i]` for
+/// k ≤ i, `[ω_i × v_k; 0]` for k > i.
+fn hessian_of(j: &[Vec<f64>]) -> Vec<Vec<Vec<f64>>> {
+    let n = j[0].len();
+    let v = |i: usize| [j[0][i], j[1][i], j[2][i]];
+    let w = |i: usize| [j[3][i], j[4][i], j[5][i]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    // Column i of H[k] as (linear, angular).
+    let cell = |k: usize, i: usize| {
+        if k <= i {
+            (cross(w(k), v(i)), cross(w(k), w(i)))
+        } else {
+            (cross(w(i), v(k)), [0.0; 3])
+        }
+    };
+    (0..n)
+        .map(|k| {
+            let cols: Vec<_> = (0..n).map(|i| cell(k, i)).collect();
+            (0..6)
+                .map(|r| {
+                    cols.iter()
+                        .map(|(lin, ang)| if r < 3 { lin[r] } else { ang[r - 3] })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// The JSON object: `{"fk", "jacobian", "jacobian_ee", "det", "task_jacobian",

@@ -31,9 +31,16 @@ tool-frame vectors (the columns of `jacobian_ee`), `R_i = Σ_(k>i) v_k·q̇_k`, 
 ω_k·q̇_k`. Not `diag(Rᵀ, Rᵀ)·J̇` — what the Robotics Toolbox's `hessiane` contracts with `q̇` to — \
 which leaves out the rotation of the tool frame itself.";
 
+const JDOT_QDOT: &str = "Bias acceleration `J̇(q, q̇)·q̇` in the world frame, `[ax, ay, az, αx, αy, \
+αz]`: the acceleration of the tool point and the angular acceleration of the tool frame at `q̈ = 0`, \
+so that `ẍ = J·q̈ + J̇·q̇`.";
+
 impl Out<'_> {
     /// `hessian`, `jacobian_dot`, `jdot_qdot`, `jacobian_ee_dot`.
     pub(super) fn second_order(&mut self, s: &SecondOrder) {
+        if let Some(why) = &s.from_jacobian {
+            return self.second_order_at_run_time(why);
+        }
         let n = self.n();
         let [hessian, jdot, jdot_qdot, jee_dot] = s.groups();
         let names: Vec<String> = (0..n)
@@ -85,9 +92,7 @@ impl Out<'_> {
             None => String::new(),
         };
         let summary = format!(
-            "Bias acceleration `J̇(q, q̇)·q̇` in the world frame, `[ax, ay, az, αx, αy, αz]`: the \
-             acceleration of the tool point and the angular acceleration of the tool frame at \
-             `q̈ = 0`, so that `ẍ = J·q̈ + J̇·q̇`. Accumulated over the joints without forming `J̇` \
+            "{JDOT_QDOT} Accumulated over the joints without forming `J̇` \
              (velocity and acceleration propagation): `[Σ_i (W_(i−1) + W_i) × u_i; Σ_i W_(i−1) × \
              w_i]` with `w_i = ω_i·q̇_i`, `u_i = v_i·q̇_i` (column i of the Jacobian times its \
              rate) and `W_i = w_1 + ⋯ + w_i`.{frame}"
@@ -100,6 +105,63 @@ impl Out<'_> {
         let result = format!("[{}]", body.outputs.join(", "));
         let ret = format!("[{}; 6]", self.f());
         self.method_of(true, doc, "jdot_qdot", ret, body, result);
+    }
+
+    /// The four second-order methods as calls of `kinegen::jacobian_rates` on the
+    /// generated Jacobians: the same formulas, evaluated at run time, for a chain whose
+    /// second order was not derived (`why`).
+    fn second_order_at_run_time(&mut self, why: &str) {
+        let n = self.n();
+        if why.contains("ran out") {
+            self.notes.push(format!(
+                "second order: {why}; `hessian`, `jacobian_dot`, `jdot_qdot` and `jacobian_ee_dot` \
+                 compute it at run time from the Jacobian's columns"
+            ));
+        }
+        let how = format!(
+            "\n\nNot derived in closed form for this robot ({why}): computed at run time from \
+             the Jacobian's columns by `kinegen::jacobian_rates`, the same formulas."
+        );
+        let rt = "::kinegen::jacobian_rates";
+        let methods = [
+            (
+                HESSIAN,
+                "hessian",
+                false,
+                format!("[{}; {n}]", self.jac()),
+                format!("{rt}::hessian(&self.jacobian(q))"),
+            ),
+            (
+                JACOBIAN_DOT,
+                "jacobian_dot",
+                true,
+                self.jac(),
+                format!("{rt}::jacobian_dot(&self.jacobian(q), qd)"),
+            ),
+            (
+                JDOT_QDOT,
+                "jdot_qdot",
+                true,
+                format!("[{}; 6]", self.f()),
+                format!("{rt}::jdot_qdot(&self.jacobian(q), qd)"),
+            ),
+            (
+                JEE_DOT,
+                "jacobian_ee_dot",
+                true,
+                self.jac(),
+                format!("{rt}::jacobian_ee_dot(&self.jacobian_ee(q), qd)"),
+            ),
+        ];
+        for (summary, name, rates, ret, expr) in methods {
+            self.items.push(Item::Method(Method {
+                doc: format!("{summary}{how}"),
+                name,
+                rates,
+                ret,
+                body: MethodBody::Expr(expr),
+            }));
+        }
     }
 
     /// `det_gradient` and `singular_factor_gradients` (or a note why not).

@@ -23,6 +23,12 @@ use crate::kinematics::model::Model;
 /// finds the same zeros as 256 in a third of the time; 16 misses some.
 pub const MAX_TERMS: usize = 64;
 
+/// Largest Hessian (`6·N²` entries) derived in closed form: 20 joints. A longer chain's
+/// Hessian would be most of its generated code (a 50-joint chain's 15 000 entries made
+/// 8.6 MB of Rust) and most of its expansion time; its second order is computed at run
+/// time from the Jacobian's columns instead ([`SecondOrder::from_jacobian`]).
+pub const MAX_HESSIAN_ENTRIES: usize = 6 * 20 * 20;
+
 /// Largest normal form (terms) the rate-dependent nodes keep: their normal forms carry
 /// products of rates, and past 16 terms they found no further zero on UR5 or Panda.
 pub const MAX_RATE_TERMS: usize = 16;
@@ -40,9 +46,24 @@ pub struct SecondOrder {
     pub jdot_qdot_frame: Option<usize>,
     /// `d/dt` of the tool-frame Jacobian, 6×N (reads the joint rates).
     pub jacobian_ee_dot: Rows,
+    /// `Some(why)`: not derived (the fields above are empty); the generated methods
+    /// compute it at run time from the Jacobian's columns (`kinegen::jacobian_rates`).
+    pub from_jacobian: Option<String>,
 }
 
 impl SecondOrder {
+    /// Second order left to run time, for the reason `why`.
+    pub fn at_run_time(why: String) -> Self {
+        SecondOrder {
+            hessian: Vec::new(),
+            jacobian_dot: Vec::new(),
+            jdot_qdot: Vec::new(),
+            jdot_qdot_frame: None,
+            jacobian_ee_dot: Vec::new(),
+            from_jacobian: Some(why),
+        }
+    }
+
     /// The ids per generated function — hessian (`H[j]` row-major, j = 1..N),
     /// jacobian_dot, jdot_qdot, jacobian_ee_dot.
     pub fn groups(&self) -> [Vec<Id>; 4] {
@@ -72,16 +93,33 @@ impl SecondOrder {
     }
 }
 
-/// The second-order outputs of `model`'s Jacobian, added to its graph.
+/// The second-order outputs of `model`'s Jacobian, added to its graph — or left to run
+/// time ([`SecondOrder::at_run_time`]) when the Hessian is larger than
+/// [`MAX_HESSIAN_ENTRIES`] or the engine's deadline passes before it is built.
 ///
 /// `J̇ q̇` is a sum of cross products, so it can be formed in any frame and rotated out
 /// once: in the world frame, in the model's middle frame (where the columns after it do
 /// not depend on the joints before it), or in one of the two link frames in the middle of
 /// the chain (each half of a 7-joint arm short: the Panda's 341 operations become 288).
-/// Each candidate is built in a scratch copy of the graph and counted; the cheapest's copy
-/// becomes the model's graph, so the others leave no nodes behind.
+/// Each candidate is built in a scratch copy of the graph and counted, one copy at a time;
+/// the cheapest is then built in the model's graph, so the others leave no nodes behind.
 pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
-    let qd = model.sym.rates(chain.dof());
+    let n = chain.dof();
+    if 6 * n * n > MAX_HESSIAN_ENTRIES {
+        return SecondOrder::at_run_time(format!(
+            "its Hessian's {} entries are over the {MAX_HESSIAN_ENTRIES} derived in closed form",
+            6 * n * n
+        ));
+    }
+    let deadline = model.sym.graph.deadline;
+    let past = |model: &mut Model| model.sym.graph.past_deadline();
+    if past(model) {
+        return SecondOrder::at_run_time(format!(
+            "{} ran out before the second order was derived",
+            deadline.describe()
+        ));
+    }
+    let qd = model.sym.rates(n);
     let cols = columns(&model.jacobian);
     let ee = columns(&model.jacobian_ee);
     let saved = (model.sym.graph.max_terms, model.sym.graph.nf_overflows);
@@ -91,7 +129,6 @@ pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
     g.max_terms = saved.0.min(MAX_RATE_TERMS);
     let jacobian_dot = from_columns(&jacobian_dot(g, &cols, &qd));
     let jacobian_ee_dot = from_columns(&jacobian_ee_dot(g, &ee, &qd));
-    let n = chain.dof();
     let mut others = Vec::new();
     if let Some(l) = model.local.clone().filter(|l| l.k > 0) {
         others.push(JdotFrame::Pivot(l));
@@ -99,21 +136,27 @@ pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
     if n >= 4 {
         others.extend([n / 2 - 1, n / 2].map(JdotFrame::Link));
     }
-    // Each candidate built in a scratch copy; the cheapest copy (ties to the earlier, the
-    // world frame first) becomes the model's graph: it is the model's graph with that
-    // candidate built in it, and nothing else.
-    let build = |c: &JdotFrame| {
-        let mut scratch = model.sym.clone();
+    // Past the deadline only the world frame is tried (it needs no copy).
+    let cost = |sym: &SymbolicChain, c: &JdotFrame| {
+        let mut scratch = sym.clone();
         let ids = c.build(chain, &mut scratch, &cols, &qd);
-        (scratch.graph.op_count(&ids), scratch, ids, c.link())
+        scratch.graph.op_count(&ids)
     };
-    let world = build(&JdotFrame::World);
-    let (_, sym, jdot_qdot, jdot_qdot_frame) =
-        others
-            .iter()
-            .map(build)
-            .fold(world, |best, c| if c.0 < best.0 { c } else { best });
-    model.sym = sym;
+    let mut best = (JdotFrame::World, usize::MAX);
+    if !past(model) {
+        best.1 = cost(&model.sym, &JdotFrame::World);
+        for c in others {
+            if past(model) {
+                break;
+            }
+            // Ties to the earlier (the world frame first).
+            let k = cost(&model.sym, &c);
+            if k < best.1 {
+                best = (c, k);
+            }
+        }
+    }
+    let jdot_qdot = best.0.build(chain, &mut model.sym, &cols, &qd);
     // Normal forms dropped here are dropped by design (see MAX_TERMS): no note.
     let g = &mut model.sym.graph;
     (g.max_terms, g.nf_overflows) = saved;
@@ -121,8 +164,9 @@ pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
         hessian,
         jacobian_dot,
         jdot_qdot,
-        jdot_qdot_frame,
+        jdot_qdot_frame: best.0.link(),
         jacobian_ee_dot,
+        from_jacobian: None,
     }
 }
 
