@@ -174,6 +174,10 @@ fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: 
             let got = model.eval(&chain, &q, &[d.node])[0];
             close(got, want, "det J");
         }
+        // A second order left to run time is `kinegen::jacobian_rates` on J (tested there).
+        if second.from_jacobian.is_some() {
+            continue;
+        }
         let h = num.hessian(&q).unwrap();
         for (k, hk) in second.hessian.iter().enumerate() {
             let ids: Vec<_> = hk.iter().flatten().copied().collect();
@@ -308,11 +312,13 @@ fn default_budget_timings() {
 // the machine: those tests check the code and that a deadline note is there.
 
 /// The phases that check the deadline, as the notes name them.
-const PHASES: [&str; 4] = [
+const PHASES: [&str; 6] = [
     "while building normal forms",
     "while comparing evaluation orders",
     "during the e-graph polish",
     "before the closed-form determinant was done",
+    "before the signs were chosen",
+    "before the second order was derived",
 ];
 
 fn with_time_ms(mut options: Options, ms: u64) -> Options {

@@ -66,13 +66,14 @@ impl Hash for Node {
 }
 
 impl Node {
-    /// The operands of the node.
-    pub fn children(&self) -> Vec<Id> {
-        match self {
-            Node::Num(_) | Node::Leaf(_) => vec![],
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => vec![*a, *b],
-            Node::Neg(a) => vec![*a],
-        }
+    /// The operands of the node (no allocation: graph walks call this for every node).
+    pub fn children(&self) -> impl Iterator<Item = Id> {
+        let (ids, n) = match self {
+            Node::Num(_) | Node::Leaf(_) => ([0, 0], 0),
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => ([*a, *b], 2),
+            Node::Neg(a) => ([*a, 0], 1),
+        };
+        ids.into_iter().take(n)
     }
 }
 
@@ -553,6 +554,14 @@ impl Graph {
         self.eval_memo(id, x, scratch)
     }
 
+    /// [`Graph::eval_in`] keeping the values `scratch` holds from earlier calls: for a
+    /// caller that evaluates many nodes of one growing graph at the same `x` (a node's
+    /// value never changes once it is built), each node once in all.
+    pub fn eval_kept(&self, id: Id, x: &dyn Fn(Var) -> f64, scratch: &mut EvalScratch) -> f64 {
+        scratch.keep(self.nodes.len());
+        self.eval_memo(id, x, scratch)
+    }
+
     /// Values of several nodes at the same variable values `x`, each shared node
     /// evaluated once.
     pub fn eval_all(&self, ids: &[Id], x: &dyn Fn(Var) -> f64) -> Vec<f64> {
@@ -594,6 +603,16 @@ impl EvalScratch {
         if self.call == 0 {
             // Stamps wrapped around: forget everything once.
             self.values.clear();
+            self.call = 1;
+        }
+        if self.values.len() < nodes {
+            self.values.resize(nodes, (0, 0.0));
+        }
+    }
+
+    /// Room for `nodes` values, those already stamped kept.
+    fn keep(&mut self, nodes: usize) {
+        if self.call == 0 {
             self.call = 1;
         }
         if self.values.len() < nodes {

@@ -283,8 +283,7 @@ impl<'a> Coder<'a> {
                 _ => {
                     1 + node
                         .children()
-                        .iter()
-                        .map(|c| depth.get(c).copied().unwrap_or(0))
+                        .map(|c| depth.get(&c).copied().unwrap_or(0))
                         .max()
                         .unwrap_or(0)
                 }

@@ -9,9 +9,14 @@ use crate::algebra::poly::VarKind;
 use crate::kinematics::frames::SymbolicChain;
 
 /// The check: exact normal forms when both are known, else values at random points.
+///
+/// One probe serves one graph as it grows: the values of its nodes at each point are
+/// kept between checks, so checking every output of a long chain costs one evaluation
+/// of the graph per point, not one per check.
 pub struct Probe {
     points: Vec<Vec<f64>>,
-    scratch: RefCell<EvalScratch>,
+    /// Per point, the values of the nodes evaluated so far.
+    values: RefCell<Vec<EvalScratch>>,
 }
 
 impl Probe {
@@ -26,7 +31,7 @@ impl Probe {
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let ring = &sym.graph.ring;
-        let points = (0..16)
+        let points: Vec<Vec<f64>> = (0..16)
             .map(|_| {
                 let mut vals: Vec<f64> = (0..ring.len())
                     .map(|v| match ring.kind(v as u32) {
@@ -42,10 +47,8 @@ impl Probe {
                 vals
             })
             .collect();
-        Probe {
-            points,
-            scratch: RefCell::default(),
-        }
+        let values = RefCell::new(vec![EvalScratch::default(); points.len()]);
+        Probe { points, values }
     }
 
     /// `a` and `b` are equal: their normal forms, else their values at the points.
@@ -58,10 +61,10 @@ impl Probe {
 
     /// Values agree at every point (for rewrites whose normal forms are not recomputed).
     pub fn same_values(&self, g: &Graph, a: Id, b: Id) -> bool {
-        let scratch = &mut *self.scratch.borrow_mut();
-        self.points.iter().all(|p| {
-            let x = g.eval_in(a, &|v| p[v as usize], scratch);
-            let y = g.eval_in(b, &|v| p[v as usize], scratch);
+        let values = &mut *self.values.borrow_mut();
+        self.points.iter().zip(values.iter_mut()).all(|(p, kept)| {
+            let x = g.eval_kept(a, &|v| p[v as usize], kept);
+            let y = g.eval_kept(b, &|v| p[v as usize], kept);
             (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()))
         })
     }

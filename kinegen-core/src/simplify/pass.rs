@@ -40,6 +40,13 @@ fn polish_all(model: &mut Model, options: &Options) {
 /// is one problem and the fused `fk_and_jacobian` has its own. The pass copies normal
 /// forms instead of recomputing them, so it is checked by value.
 fn move_signs(model: &mut Model) {
+    if model.sym.graph.past_deadline() {
+        model.notes.push(format!(
+            "{} ran out before the signs were chosen: the expressions are emitted as built",
+            model.sym.graph.deadline.describe()
+        ));
+        return;
+    }
     let groups = model.groups();
     let g = &mut model.sym.graph;
     let signed: Vec<Id> = groups
@@ -89,6 +96,16 @@ fn note_lost_normal_forms(model: &mut Model) {
 /// and Panda it saved nothing there, and on UR5's `jdot_qdot` its tree-by-tree choices
 /// cost 26 operations more after sharing.)
 pub fn simplify_second_order(model: &mut Model, second: &mut SecondOrder) {
+    if second.from_jacobian.is_some() {
+        return;
+    }
+    if model.sym.graph.past_deadline() {
+        model.notes.push(format!(
+            "{} ran out before the second-order outputs' signs were chosen: they are emitted as built",
+            model.sym.graph.deadline.describe()
+        ));
+        return;
+    }
     let groups = second.groups();
     let g = &mut model.sym.graph;
     let signed: Vec<Id> = groups

@@ -123,7 +123,8 @@ pub fn polish(
     let probe = Probe::new(sym);
     let g = &mut sym.graph;
     let (order, uses) = reachable(g, outputs);
-    let is_root = |id: Id| outputs.contains(&id) || uses.get(&id).copied().unwrap_or(0) >= 2;
+    let output_set: std::collections::HashSet<Id> = outputs.iter().copied().collect();
+    let is_root = |id: Id| output_set.contains(&id) || uses.get(&id).copied().unwrap_or(0) >= 2;
     let mut map: HashMap<Id, Id> = HashMap::new();
     let run = Run {
         rules: &rules,
@@ -134,13 +135,19 @@ pub fn polish(
         if matches!(g.node(id), Node::Num(_) | Node::Leaf(_)) || !is_root(id) {
             continue;
         }
+        // Past the engine's deadline the remaining expressions stay as they are: their
+        // original nodes are still in the graph, so nothing needs rebuilding.
+        if g.past_deadline() {
+            report.timed_out += 1;
+            continue;
+        }
         // The inline tree under this root, leaves mapped to their polished ids.
         let mut tree = Tree {
             expr: RecExpr::default(),
             size: 0,
             remapped: false,
         };
-        to_expr(g, id, true, &uses, outputs, &map, &mut tree);
+        to_expr(g, id, true, &uses, &output_set, &map, &mut tree);
         // The unsimplified expression, on the (already checked) polished operands;
         // untouched when none of them changed (rebuilding would re-canonicalise it).
         let original = if tree.remapped {
@@ -261,7 +268,7 @@ fn to_expr(
     id: Id,
     top: bool,
     uses: &HashMap<Id, usize>,
-    outputs: &[Id],
+    outputs: &std::collections::HashSet<Id>,
     map: &HashMap<Id, Id>,
     tree: &mut Tree,
 ) -> EId {
