@@ -158,7 +158,7 @@ fn second_order(
 ) -> SecondOrderValues {
     let (model, s) = (&derived.model, &derived.second);
     let n = chain.dof();
-    let (hessian, jacobian_dot, jdot_qdot) = if s.from_jacobian.is_some() {
+    let (hessian, jacobian_dot, jdot_qdot) = if s.at_run_time.is_some() {
         // Left to run time: what the generated methods compute from J's columns.
         let hessian = hessian_of(jacobian);
         let jacobian_dot: Option<Vec<Vec<f64>>> = qd.map(|qd| {

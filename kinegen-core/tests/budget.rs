@@ -175,7 +175,7 @@ fn check_model(robot: &Robot, options: &Options, rng: &mut Rng, configurations: 
             close(got, want, "det J");
         }
         // A second order left to run time is `kinegen::jacobian_rates` on J (tested there).
-        if second.from_jacobian.is_some() {
+        if second.at_run_time.is_some() {
             continue;
         }
         let h = num.hessian(&q).unwrap();

@@ -26,7 +26,7 @@ pub const MAX_TERMS: usize = 64;
 /// Largest Hessian (`6·N²` entries) derived in closed form: 20 joints. A longer chain's
 /// Hessian would be most of its generated code (a 50-joint chain's 15 000 entries made
 /// 8.6 MB of Rust) and most of its expansion time; its second order is computed at run
-/// time from the Jacobian's columns instead ([`SecondOrder::from_jacobian`]).
+/// time from the Jacobian's columns instead ([`AtRunTime::TooLarge`]).
 pub const MAX_HESSIAN_ENTRIES: usize = 6 * 20 * 20;
 
 /// Largest normal form (terms) the rate-dependent nodes keep: their normal forms carry
@@ -48,19 +48,45 @@ pub struct SecondOrder {
     pub jacobian_ee_dot: Rows,
     /// `Some(why)`: not derived (the fields above are empty); the generated methods
     /// compute it at run time from the Jacobian's columns (`kinegen::jacobian_rates`).
-    pub from_jacobian: Option<String>,
+    pub at_run_time: Option<AtRunTime>,
+}
+
+/// Why a chain's second order is left to run time.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AtRunTime {
+    /// Its Hessian's `6·N²` entries are over [`MAX_HESSIAN_ENTRIES`].
+    TooLarge {
+        /// `6·N²`.
+        entries: usize,
+    },
+    /// The engine's deadline had passed (its [`crate::Deadline::describe`]).
+    Deadline(String),
+}
+
+impl std::fmt::Display for AtRunTime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            AtRunTime::TooLarge { entries } => write!(
+                f,
+                "its Hessian's {entries} entries are over the {MAX_HESSIAN_ENTRIES} derived in closed form"
+            ),
+            AtRunTime::Deadline(budget) => {
+                write!(f, "{budget} ran out before the second order was derived")
+            }
+        }
+    }
 }
 
 impl SecondOrder {
     /// Second order left to run time, for the reason `why`.
-    pub fn at_run_time(why: String) -> Self {
+    pub fn at_run_time(why: AtRunTime) -> Self {
         SecondOrder {
             hessian: Vec::new(),
             jacobian_dot: Vec::new(),
             jdot_qdot: Vec::new(),
             jdot_qdot_frame: None,
             jacobian_ee_dot: Vec::new(),
-            from_jacobian: Some(why),
+            at_run_time: Some(why),
         }
     }
 
@@ -106,18 +132,12 @@ impl SecondOrder {
 pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
     let n = chain.dof();
     if 6 * n * n > MAX_HESSIAN_ENTRIES {
-        return SecondOrder::at_run_time(format!(
-            "its Hessian's {} entries are over the {MAX_HESSIAN_ENTRIES} derived in closed form",
-            6 * n * n
-        ));
+        return SecondOrder::at_run_time(AtRunTime::TooLarge { entries: 6 * n * n });
     }
     let deadline = model.sym.graph.deadline;
     let past = |model: &mut Model| model.sym.graph.past_deadline();
     if past(model) {
-        return SecondOrder::at_run_time(format!(
-            "{} ran out before the second order was derived",
-            deadline.describe()
-        ));
+        return SecondOrder::at_run_time(AtRunTime::Deadline(deadline.describe()));
     }
     let qd = model.sym.rates(n);
     let cols = columns(&model.jacobian);
@@ -136,14 +156,14 @@ pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
     if n >= 4 {
         others.extend([n / 2 - 1, n / 2].map(JdotFrame::Link));
     }
-    // Past the deadline only the world frame is tried (it needs no copy).
+    // Alone, or past the deadline, the world frame is built without a copy.
     let cost = |sym: &SymbolicChain, c: &JdotFrame| {
         let mut scratch = sym.clone();
         let ids = c.build(chain, &mut scratch, &cols, &qd);
         scratch.graph.op_count(&ids)
     };
     let mut best = (JdotFrame::World, usize::MAX);
-    if !past(model) {
+    if !others.is_empty() && !past(model) {
         best.1 = cost(&model.sym, &JdotFrame::World);
         for c in others {
             if past(model) {
@@ -166,7 +186,7 @@ pub fn second_order(chain: &Chain, model: &mut Model) -> SecondOrder {
         jdot_qdot,
         jdot_qdot_frame: best.0.link(),
         jacobian_ee_dot,
-        from_jacobian: None,
+        at_run_time: None,
     }
 }
 

@@ -96,7 +96,7 @@ fn note_lost_normal_forms(model: &mut Model) {
 /// and Panda it saved nothing there, and on UR5's `jdot_qdot` its tree-by-tree choices
 /// cost 26 operations more after sharing.)
 pub fn simplify_second_order(model: &mut Model, second: &mut SecondOrder) {
-    if second.from_jacobian.is_some() {
+    if second.at_run_time.is_some() {
         return;
     }
     if model.sym.graph.past_deadline() {
