@@ -194,7 +194,11 @@ impl Urdf {
             label,
             list: Vec::new(),
         };
-        let line = |n: Node| doc.text_pos_at(n.range().start).row as usize;
+        // Line of a node: by binary search in the newlines' offsets (roxmltree's
+        // `text_pos_at` counts from the start of the file on every call: quadratic,
+        // 0.4 s for a 1 000-link file).
+        let newlines: Vec<usize> = src.match_indices('\n').map(|(i, _)| i).collect();
+        let line = |n: Node| 1 + newlines.partition_point(|&i| i < n.range().start);
         xacro_left(&doc, &mut errors, &line);
         if !errors.list.is_empty() {
             return Err(LoadError {
