@@ -427,10 +427,14 @@ impl Builder {
     }
 }
 
-/// `u / |u|`.
+/// `u / |u|`, scaled by the largest component first: squaring `1e300` overflows, and
+/// the axis `1e300 0 1` came out as `0 0 0` — then "snapped" to z (found by the URDF
+/// mutation test).
 fn unit(v: &[f64; 3]) -> [f64; 3] {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    [v[0] / n, v[1] / n, v[2] / n]
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let w = v.map(|x| x / m);
+    let n = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    w.map(|x| x / n)
 }
 
 /// `(t, |x − tπ|)` for the multiple `t` of 1/12 with `tπ` within `tol` of `x`.
@@ -595,5 +599,13 @@ mod tests {
         assert_eq!(fmt_rat(&snap_to_twelfths(1.5708, 1e-4).unwrap().0), "0.5");
         assert!(snap_to_twelfths(1.5708, 0.0).is_none());
         assert!(snap_to_twelfths(1.6, 1e-4).is_none());
+    }
+
+    /// A huge component must not overflow the norm: `1e300 0 1` is x, not z.
+    #[test]
+    fn huge_axes_keep_their_direction() {
+        assert_eq!(unit(&[1e300, 0.0, 1.0]), [1.0, 0.0, 1e-300]);
+        assert_eq!(unit(&[0.0, -3e200, 4e200]), [0.0, -0.6, 0.8]);
+        assert_eq!(unit(&[0.0, 0.0, 2.0]), [0.0, 0.0, 1.0]);
     }
 }
