@@ -84,7 +84,12 @@ pub fn load(arg: &str, urdf: &UrdfArgs) -> Result<(Chain, Options), CliError> {
 
 /// The chain of a URDF file.
 fn load_urdf(path: &Path, args: &UrdfArgs) -> Result<Chain, CliError> {
-    let urdf = Urdf::load_file(path).map_err(CliError::Load)?;
+    urdf_chain(&Urdf::load_file(path).map_err(CliError::Load)?, args)
+}
+
+/// The chain of a parsed URDF that `--base`, `--tip` and `--snap` select, as `kinegen`
+/// loads a `.urdf` file (after [`Urdf::load_file`]).
+pub fn urdf_chain(urdf: &Urdf, args: &UrdfArgs) -> Result<Chain, CliError> {
     let selection = Selection {
         base: args.base.clone(),
         tip: args.tip.clone(),
