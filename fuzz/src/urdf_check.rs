@@ -49,7 +49,20 @@ pub fn check_error(e: &LoadError, label: &str) {
 /// `generate_it`, generate it and compare its model with the numeric reference at joint
 /// values from `q_seed`.
 pub fn urdf(src: &str, q_seed: &[f64], generate_it: bool) -> UrdfOutcome {
-    let label = "fuzz.urdf";
+    let engine = |u: &Urdf| u.chain(&Selection::default());
+    load_and_check(src, "fuzz.urdf", engine, |_, _| generate_it, q_seed, true)
+}
+
+/// Parse `src` (named `label`), build its chain with `build`, and where `check` says so
+/// compare its model with the reference ([`chain_outcome`]; `with_code`: generate too).
+pub fn load_and_check(
+    src: &str,
+    label: &str,
+    build: impl Fn(&Urdf) -> Result<Chain, LoadError>,
+    mut check: impl FnMut(&Urdf, &Chain) -> bool,
+    q_seed: &[f64],
+    with_code: bool,
+) -> UrdfOutcome {
     let urdf = match Urdf::parse(src, label) {
         Ok(u) => u,
         Err(e) => {
@@ -57,12 +70,12 @@ pub fn urdf(src: &str, q_seed: &[f64], generate_it: bool) -> UrdfOutcome {
             return UrdfOutcome::Rejected;
         }
     };
-    match urdf.chain(&Selection::default()) {
+    match build(&urdf) {
         Err(e) => {
             check_error(&e, label);
             UrdfOutcome::NoChain
         }
-        Ok(chain) if generate_it => chain_outcome(&urdf, &chain, q_seed, true),
+        Ok(chain) if check(&urdf, &chain) => chain_outcome(&urdf, &chain, q_seed, with_code),
         Ok(_) => UrdfOutcome::Built,
     }
 }

@@ -7,7 +7,7 @@
 //! a chain is generated and its model compared with a numeric reference computed from
 //! the parsed joints (`fuzz/src/urdf_check.rs`, the fuzz target's own oracle).
 //!
-//! Mutants come from a fixed-seed SplitMix64: every run checks the same ones.
+//! Mutants come from a fixed-seed generator: every run checks the same ones.
 
 #[allow(dead_code)]
 #[path = "../../fuzz/src/urdf_check.rs"]
@@ -15,25 +15,19 @@ mod urdf_check;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+use kinegen::ik::XorShift64;
 use kinegen_cli::error::CliError;
 use kinegen_cli::robots::{urdf_chain, UrdfArgs};
 use kinegen_core::front::urdf::Urdf;
-use urdf_check::{chain_outcome, check_error, UrdfOutcome};
+use kinegen_core::Chain;
+use urdf_check::{load_and_check, UrdfOutcome};
 
-/// SplitMix64 (no dependency, the same numbers everywhere).
-struct Rng(u64);
+/// The runtime's seeded generator, with the two draws the mutator needs.
+struct Rng(XorShift64);
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
     fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
+        (self.0.next_u64() % n.max(1) as u64) as usize
     }
 
     fn pick<'a, T>(&mut self, xs: &'a [T]) -> &'a T {
@@ -262,36 +256,23 @@ const Q: [f64; 8] = [0.3, -1.1, 0.7, 2.0, -0.4, 1.3, 0.2, -2.5];
 
 /// One mutant through the CLI's loader and the oracle.
 fn outcome(src: &str, built: &mut usize) -> UrdfOutcome {
-    let label = "mutant.urdf";
-    let urdf = match Urdf::parse(src, label) {
-        Ok(u) => u,
-        Err(e) => {
-            check_error(&e, label);
-            return UrdfOutcome::Rejected;
-        }
-    };
-    match urdf_chain(&urdf, &UrdfArgs::default()) {
-        Err(CliError::Load(e)) => {
-            check_error(&e, label);
-            UrdfOutcome::NoChain
-        }
+    let cli = |urdf: &Urdf| match urdf_chain(urdf, &UrdfArgs::default()) {
+        Ok(chain) => Ok(chain),
+        Err(CliError::Load(e)) => Err(e),
         Err(CliError::Usage(m)) => panic!("a usage error without options: {m}"),
-        Ok(chain) => {
-            *built += 1;
-            if *built % GENERATE_EVERY == 0 {
-                chain_outcome(&urdf, &chain, &Q, false)
-            } else {
-                UrdfOutcome::Built
-            }
-        }
-    }
+    };
+    let check = |_: &Urdf, _: &Chain| {
+        *built += 1;
+        *built % GENERATE_EVERY == 0
+    };
+    load_and_check(src, "mutant.urdf", cli, check, &Q, false)
 }
 
 #[test]
 fn ten_thousand_urdf_mutants_load_or_say_where() {
     let sources = sources();
     assert!(sources.len() >= 10, "{} URDF files", sources.len());
-    let mut rng = Rng(32);
+    let mut rng = Rng(XorShift64::new(32));
     let mut tally = [0usize; 4];
     let mut built = 0;
     let mut times = [std::time::Duration::ZERO; 2];
