@@ -71,6 +71,18 @@ pub mod velocity;
 
 pub use error::SolveError;
 pub use ik::closed_form::InverseKinematics;
+
+/// The nalgebra the runtime's public types come from (0.33), so that a user on another
+/// nalgebra can name this one's types (`kinegen::nalgebra::Isometry3`) instead of
+/// meeting "two versions of nalgebra" errors. The generated code's interface is plain
+/// arrays and needs none of it.
+///
+/// ```
+/// use kinegen::nalgebra::{Isometry3, Vector3};
+/// let pose: Isometry3<f64> = Isometry3::translation(0.1, 0.2, 0.3);
+/// assert_eq!(pose.translation.vector, Vector3::new(0.1, 0.2, 0.3));
+/// ```
+pub use nalgebra;
 pub mod trajectory;
 
 /// A robot arm with `N` joints whose kinematics kinegen generated.
