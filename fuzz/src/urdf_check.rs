@@ -50,16 +50,17 @@ pub fn check_error(e: &LoadError, label: &str) {
 /// values from `q_seed`.
 pub fn urdf(src: &str, q_seed: &[f64], generate_it: bool) -> UrdfOutcome {
     let engine = |u: &Urdf| u.chain(&Selection::default());
-    load_and_check(src, "fuzz.urdf", engine, |_, _| generate_it, q_seed, true)
+    load_and_check(src, "fuzz.urdf", engine, || generate_it, q_seed, true)
 }
 
-/// Parse `src` (named `label`), build its chain with `build`, and where `check` says so
-/// compare its model with the reference ([`chain_outcome`]; `with_code`: generate too).
+/// Parse `src` (named `label`), build its chain with `build`, and where `check()` says so
+/// (it is asked once per built chain) compare its model with the reference
+/// ([`chain_outcome`]; `with_code`: generate too).
 pub fn load_and_check(
     src: &str,
     label: &str,
     build: impl Fn(&Urdf) -> Result<Chain, LoadError>,
-    mut check: impl FnMut(&Urdf, &Chain) -> bool,
+    mut check: impl FnMut() -> bool,
     q_seed: &[f64],
     with_code: bool,
 ) -> UrdfOutcome {
@@ -75,7 +76,7 @@ pub fn load_and_check(
             check_error(&e, label);
             UrdfOutcome::NoChain
         }
-        Ok(chain) if check(&urdf, &chain) => chain_outcome(&urdf, &chain, q_seed, with_code),
+        Ok(chain) if check() => chain_outcome(&urdf, &chain, q_seed, with_code),
         Ok(_) => UrdfOutcome::Built,
     }
 }
