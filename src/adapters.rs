@@ -65,3 +65,46 @@ pub fn pose_matrix(pose: &Isometry3<f64>) -> [[f64; 4]; 4] {
 pub fn fk_isometry<R: Kinematics<N>, const N: usize>(robot: &R, q: &[f64; N]) -> Isometry3<f64> {
     pose_isometry(&robot.fk(q))
 }
+
+/// A homogeneous transform as a [`mint`] column-major 4×4 matrix (the `mint` feature):
+/// what glam (`DMat4::from`), cgmath and other math crates take. Positions and
+/// rotations convert through nalgebra's own `mint` conversions
+/// (`translation_of(&t).into()`, `pose_isometry(&t).rotation.into()`).
+///
+/// ```
+/// # #[cfg(feature = "mint")] {
+/// use kinegen::adapters::{pose_from_mint, pose_isometry, pose_to_mint};
+/// let t = [[0.0, -1.0, 0.0, 0.1], [1.0, 0.0, 0.0, 0.2], [0.0, 0.0, 1.0, 0.3], [0.0, 0.0, 0.0, 1.0]];
+/// let m = pose_to_mint(&t);
+/// assert_eq!(m.w, mint::Vector4 { x: 0.1, y: 0.2, z: 0.3, w: 1.0 }); // the translation column
+/// assert_eq!(pose_from_mint(m), t);
+/// let q: mint::Quaternion<f64> = pose_isometry(&t).rotation.into();
+/// assert!((q.s - 0.5f64.sqrt()).abs() < 1e-15 && (q.v.z - 0.5f64.sqrt()).abs() < 1e-15);
+/// # }
+/// ```
+#[cfg(feature = "mint")]
+#[cfg_attr(docsrs, doc(cfg(feature = "mint")))]
+pub fn pose_to_mint(t: &[[f64; 4]; 4]) -> mint::ColumnMatrix4<f64> {
+    let column = |c: usize| mint::Vector4 {
+        x: t[0][c],
+        y: t[1][c],
+        z: t[2][c],
+        w: t[3][c],
+    };
+    mint::ColumnMatrix4 {
+        x: column(0),
+        y: column(1),
+        z: column(2),
+        w: column(3),
+    }
+}
+
+/// A [`mint`] column-major 4×4 matrix (or anything that converts into one, such as
+/// glam's `DMat4`) as the row-major transform `fk` and `ik` use (the `mint` feature).
+#[cfg(feature = "mint")]
+#[cfg_attr(docsrs, doc(cfg(feature = "mint")))]
+pub fn pose_from_mint(m: impl Into<mint::ColumnMatrix4<f64>>) -> [[f64; 4]; 4] {
+    let m: mint::ColumnMatrix4<f64> = m.into();
+    let columns: [[f64; 4]; 4] = [m.x.into(), m.y.into(), m.z.into(), m.w.into()];
+    core::array::from_fn(|r| core::array::from_fn(|c| columns[c][r]))
+}

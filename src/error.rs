@@ -7,6 +7,8 @@ use core::fmt;
 
 /// Why a linear solve with a Jacobian failed.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SolveError {
     /// The matrix is singular or numerically so: a pivot of the LU factorisation (or the
     /// smallest singular value, for the full-rank pseudo-inverse forms), relative to the

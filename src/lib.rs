@@ -43,7 +43,24 @@
 //! ([`SecondOrderKinematics`]) [`acceleration`] (resolved-acceleration control) and
 //! [`redundancy`] (gradient projection); [`math`] and [`jacobian_rates`] (the second
 //! order of chains too long for closed forms) are what the generated code calls.
+//!
+//! ## Optional features
+//!
+//! - `std` (default): the platform's `sqrt`/`atan2`/`acos`; without it the `libm` crate
+//!   (generated code gives the same bits either way).
+//! - `serde`: `Serialize`/`Deserialize` for IK solutions ([`ik::IkSolutions`],
+//!   [`ik::IkBranch`], [`ik::IkSolution`]), trajectories ([`trajectory::Trapezoid`],
+//!   [`trajectory::Cubic`], [`trajectory::Quintic`], [`trajectory::Synchronized`],
+//!   [`trajectory::CartesianLine`], stored as the inputs that define them and read back
+//!   through their constructors' checks), poses (nalgebra's types, through its own
+//!   feature) and [`SolveError`]; `Serialize` for the errors that hold `&'static str`
+//!   ([`ik::IkError`], [`trajectory::TrajectoryError`]).
+//! - `defmt`: `defmt::Format` for what firmware logs: IK solutions (and the
+//!   subproblems' [`ik::subproblems::Fit`]), the errors.
+//! - `mint`: `adapters::pose_to_mint` and `adapters::pose_from_mint`, and nalgebra's
+//!   `mint` conversions, for glam, cgmath and other math crates.
 #![no_std]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 #![warn(missing_docs)]
 
 #[cfg(feature = "std")]
@@ -72,10 +89,12 @@ pub mod velocity;
 pub use error::SolveError;
 pub use ik::closed_form::InverseKinematics;
 
-/// The nalgebra the runtime's public types come from (0.33), so that a user on another
-/// nalgebra can name this one's types (`kinegen::nalgebra::Isometry3`) instead of
-/// meeting "two versions of nalgebra" errors. The generated code's interface is plain
-/// arrays and needs none of it.
+/// The nalgebra the runtime's public types come from. kinegen accepts every nalgebra
+/// from 0.33 to 0.35, so a crate that depends on one of them shares it with kinegen
+/// (cargo picks the newest in the range; a crate on an older one runs
+/// `cargo update -p nalgebra@<newest> --precise <its version>`, see the README). Naming
+/// this re-export (`kinegen::nalgebra::Isometry3`) always names kinegen's. The
+/// generated code's interface is plain arrays and needs none of it.
 ///
 /// ```
 /// use kinegen::nalgebra::{Isometry3, Vector3};

@@ -117,8 +117,11 @@ impl Default for IkOptions {
 
 /// A converged solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct IkSolution<const N: usize> {
     /// Joint values, within the robot's limits.
+    #[cfg_attr(feature = "serde", serde(with = "serde_big_array::BigArray"))]
     pub q: [f64; N],
     /// Iterations (Jacobian evaluations) of the solve that produced `q`.
     pub iterations: usize,
@@ -132,8 +135,11 @@ pub struct IkSolution<const N: usize> {
     pub attempts: usize,
 }
 
-/// Why no solution was returned.
+/// Why no solution was returned. With `serde`, serialized for logs (not read back: it
+/// holds `&'static str` messages).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum IkError<const N: usize> {
     /// The iteration limit was reached, or the error stopped decreasing (a local minimum
     /// of `‖e‖²`, often because a joint limit blocks the way).
@@ -143,6 +149,7 @@ pub enum IkError<const N: usize> {
         /// `‖e‖` at `q`.
         residual: f64,
         /// The last (best) iterate.
+        #[cfg_attr(feature = "serde", serde(with = "serde_big_array::BigArray"))]
         q: [f64; N],
     },
     /// The target position is provably unreachable: farther from joint 1's axis than the
@@ -160,6 +167,7 @@ pub enum IkError<const N: usize> {
         /// Smallest singular value of the task Jacobian at `q`.
         sigma_min: f64,
         /// The configuration where the solver stalled.
+        #[cfg_attr(feature = "serde", serde(with = "serde_big_array::BigArray"))]
         q: [f64; N],
     },
     /// The target, seed or options are not usable (NaN/∞, non-positive tolerance, limits

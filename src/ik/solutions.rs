@@ -59,9 +59,12 @@ impl<const N: usize, const K: usize> Candidates<N, K> {
 /// (`f64`, or `f32` for a `scalar: f32` robot, whose solve runs in f64 and is rounded
 /// once at the end: [`IkSolutions::to_f32`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct IkBranch<const N: usize, T = f64> {
     /// Joint values (revolute joints wrapped by whole turns into the limits where that
     /// helps, else into `(−π, π]`).
+    #[cfg_attr(feature = "serde", serde(with = "serde_big_array::BigArray"))]
     pub q: [T; N],
     /// `fk(q)` reaches the pose (to [`EXACT_TOLERANCE`]). `false`: the pose is out of
     /// reach and `q` is the nearest the solver found (least squares), see `residual` —
@@ -85,6 +88,9 @@ pub struct IkBranch<const N: usize, T = f64> {
 
 /// All solutions of one pose: at most `K`, no allocation; joint values in `T` (`f64`, or
 /// `f32` for a `scalar: f32` robot).
+///
+/// With the `serde` feature it is a sequence of its branches (reading back more than `K`
+/// is an error); with `defmt`, firmware logs it as that list.
 #[derive(Clone, Copy, Debug)]
 pub struct IkSolutions<const N: usize, const K: usize, T = f64> {
     items: [IkBranch<N, T>; K],
@@ -557,6 +563,56 @@ pub fn pose_matrix(pose: &Pose) -> [[f64; 4]; 4] {
         [r[(2, 0)], r[(2, 1)], r[(2, 2)], p[2]],
         [0.0, 0.0, 0.0, 1.0],
     ]
+}
+
+#[cfg(feature = "serde")]
+impl<const N: usize, const K: usize, T: serde::Serialize> serde::Serialize
+    for IkSolutions<N, K, T>
+{
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(&self.items[..self.len])
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de, const N: usize, const K: usize, T> serde::Deserialize<'de> for IkSolutions<N, K, T>
+where
+    T: serde::Deserialize<'de> + Copy + Default,
+{
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Branches<const N: usize, const K: usize, T>(core::marker::PhantomData<T>);
+        impl<'de, const N: usize, const K: usize, T> serde::de::Visitor<'de> for Branches<N, K, T>
+        where
+            T: serde::Deserialize<'de> + Copy + Default,
+        {
+            type Value = IkSolutions<N, K, T>;
+            fn expecting(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
+                write!(f, "a sequence of at most {K} IK branches")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Self::Value, A::Error> {
+                let mut out = IkSolutions::empty();
+                while let Some(branch) = seq.next_element::<IkBranch<N, T>>()? {
+                    if out.len == K {
+                        return Err(serde::de::Error::invalid_length(K + 1, &self));
+                    }
+                    out.items[out.len] = branch;
+                    out.len += 1;
+                }
+                Ok(out)
+            }
+        }
+        deserializer.deserialize_seq(Branches::<N, K, T>(core::marker::PhantomData))
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<const N: usize, const K: usize, T: defmt::Format> defmt::Format for IkSolutions<N, K, T> {
+    fn format(&self, f: defmt::Formatter) {
+        defmt::write!(f, "{}", &self.items[..self.len])
+    }
 }
 
 #[cfg(test)]

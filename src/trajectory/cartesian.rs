@@ -39,6 +39,18 @@ const NORMALIZED_TOL: f64 = 1e-9;
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::LineEnds<P>",
+        try_from = "super::stored::LineEnds<P>",
+        bound(
+            serialize = "P: Profile + Clone + serde::Serialize",
+            deserialize = "P: Profile + serde::Deserialize<'de>"
+        )
+    )
+)]
 pub struct CartesianLine<P> {
     start: Isometry3<f64>,
     end: Isometry3<f64>,

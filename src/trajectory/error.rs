@@ -6,8 +6,12 @@ use core::fmt;
 ///
 /// Every constructor in [`crate::trajectory`] checks its inputs and returns one of these
 /// instead of producing a profile that would divide by zero, overshoot a limit or
-/// contain NaN.
+/// contain NaN. With `serde`, serialized for logs (not read back: it holds `&'static
+/// str` names); it is also what reading back a trajectory that breaks its invariants
+/// reports.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum TrajectoryError {
     /// An input that must be a finite number (a position, velocity, time, …) was NaN or ±∞.
     NotFinite {

@@ -22,6 +22,8 @@ mod error;
 mod multi_segment;
 mod polynomial;
 mod profile;
+#[cfg(feature = "serde")]
+mod stored;
 mod sync;
 mod trapezoid;
 

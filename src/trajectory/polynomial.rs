@@ -55,6 +55,14 @@ fn checked(coeffs: [f64; 6]) -> Result<Poly5, TrajectoryError> {
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::CubicEnds",
+        try_from = "super::stored::CubicEnds"
+    )
+)]
 pub struct Cubic {
     poly: Poly5,
     duration: f64,
@@ -104,6 +112,14 @@ impl Cubic {
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::QuinticEnds",
+        try_from = "super::stored::QuinticEnds"
+    )
+)]
 pub struct Quintic {
     poly: Poly5,
     duration: f64,

@@ -26,6 +26,14 @@ use super::trapezoid::{Stretch, Trapezoid};
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::SynchronizedJoints<N>",
+        try_from = "super::stored::SynchronizedJoints<N>"
+    )
+)]
 pub struct Synchronized<const N: usize> {
     joints: [Trapezoid; N],
     duration: f64,
@@ -72,6 +80,17 @@ impl<const N: usize> Synchronized<N> {
         if joints.iter().any(|j| j.duration() != duration) {
             // Zero duration requested but some joint has to move.
             return Err(TrajectoryError::InvalidDuration { value: duration });
+        }
+        Self::from_joints(joints)
+    }
+
+    /// Joints planned already, which must all take the same time (`Err` otherwise).
+    pub(super) fn from_joints(joints: [Trapezoid; N]) -> Result<Self, TrajectoryError> {
+        let duration = joints.first().map_or(0.0, Trapezoid::duration);
+        if let Some(j) = joints.iter().find(|j| j.duration() != duration) {
+            return Err(TrajectoryError::InvalidDuration {
+                value: j.duration(),
+            });
         }
         Ok(Self { joints, duration })
     }

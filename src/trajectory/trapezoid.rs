@@ -28,6 +28,14 @@ const FEASIBILITY_SLACK: f64 = 1e-12;
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::TrapezoidTiming",
+        try_from = "super::stored::TrapezoidTiming"
+    )
+)]
 pub struct Trapezoid {
     q0: f64,
     q1: f64,
@@ -192,7 +200,12 @@ impl Trapezoid {
     /// The one place a profile is assembled: velocity and acceleration are derived from
     /// the timing so that `|Δ| = v·(T − t_a)` and `v = a·t_a` hold to rounding, which
     /// keeps the three phases continuous.
-    fn from_timing(q0: f64, q1: f64, t_a: f64, duration: f64) -> Result<Self, TrajectoryError> {
+    pub(super) fn from_timing(
+        q0: f64,
+        q1: f64,
+        t_a: f64,
+        duration: f64,
+    ) -> Result<Self, TrajectoryError> {
         let d = math::abs(q1 - q0);
         let v = d / (duration - t_a);
         let a = v / t_a;

@@ -68,6 +68,8 @@ pub const ON_AXIS: f64 = 1e-18;
 /// How a subproblem's solution relates to the data, from the strongest to the weakest
 /// (the order [`Fit::and`] uses).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Fit {
     /// Solves the equations (to rounding).
     Exact,
