@@ -3,6 +3,7 @@
 #   1. installs what is missing: the thumbv7em-none-eabihf target (rustup) and
 #      qemu-system-arm (Debian's apt-get, non-interactive);
 #   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32) and the host check;
+#      twice: the default closed-form IK, then the size-first one (feature small-ik);
 #   3. runs the firmware on QEMU's mps2-an386 (Cortex-M4F) with a time limit, its
 #      semihosting output piped into the host check, which compares every value with the
 #      host's (see src/bin/check.rs). Exit status 0 only if all of it succeeded.
@@ -26,26 +27,40 @@ fi
 qemu-system-arm --version | head -n 1
 
 host="$(rustc -vV | sed -n 's/^host: //p')"
-# .cargo/config.toml sets the firmware target; the check is built for the host.
-cargo build --release --bin firmware
-cargo build --release --bin check --target "$host"
 target_dir="${CARGO_TARGET_DIR:-target}"
-elf="$target_dir/thumbv7em-none-eabihf/release/firmware"
-check="$target_dir/$host/release/check"
 
-out="$(mktemp)"
-trap 'rm -f "$out"' EXIT
-status=0
-timeout "$QEMU_TIMEOUT" qemu-system-arm -M mps2-an386 -cpu cortex-m4 \
-    -display none -monitor none -serial none \
-    -semihosting-config enable=on,target=native \
-    -kernel "$elf" </dev/null >"$out" || status=$?
-if [ "$status" = 124 ]; then
-    echo "firmware: QEMU did not exit within ${QEMU_TIMEOUT}s" >&2
-fi
-if [ "$status" != 0 ]; then
-    echo "firmware: QEMU exited with status $status; output:" >&2
-    cat "$out" >&2
-    exit 1
-fi
-"$check" "$out"
+outputs="$(mktemp -d)"
+trap 'rm -rf "$outputs"' EXIT
+
+# Builds the firmware and the host check with the given features, runs the firmware on
+# QEMU and checks its output, kept as "$outputs/$1".
+run() {
+    local name="$1"
+    shift
+    local features=("$@")
+    # .cargo/config.toml sets the firmware target; the check is built for the host.
+    cargo build --release --bin firmware "${features[@]}"
+    cargo build --release --bin check --target "$host" "${features[@]}"
+    local elf="$target_dir/thumbv7em-none-eabihf/release/firmware"
+    local check="$target_dir/$host/release/check"
+    local out="$outputs/$name" status=0
+    timeout "$QEMU_TIMEOUT" qemu-system-arm -M mps2-an386 -cpu cortex-m4 \
+        -display none -monitor none -serial none \
+        -semihosting-config enable=on,target=native \
+        -kernel "$elf" </dev/null >"$out" || status=$?
+    if [ "$status" = 124 ]; then
+        echo "firmware: QEMU did not exit within ${QEMU_TIMEOUT}s" >&2
+    fi
+    if [ "$status" != 0 ]; then
+        echo "firmware: QEMU exited with status $status; output:" >&2
+        cat "$out" >&2
+        exit 1
+    fi
+    "$check" "$out"
+}
+
+# The default IK (the regular poses in lanes), then the size-first one (`small-ik`);
+# each bit-identical to the host built the same way, and the two with the same solutions.
+run lanes
+run small --features small-ik
+"$target_dir/$host/release/check" --same-ik "$outputs/lanes" "$outputs/small"

@@ -9,7 +9,7 @@ its size is the generated method's code), then the library routines each precisi
 reaches through calls (libm's sin/cos, compiler-builtins' soft-float f64), counted once
 per precision.
 
-    python3 size.py [--opt-level s|z|1|2|3]
+    python3 size.py [--opt-level s|z|1|2|3] [--features small-ik]
 """
 import argparse
 import os
@@ -31,10 +31,11 @@ def tool(name):
     return str(path)
 
 
-def build(opt_level):
+def build(opt_level, features):
     env = dict(os.environ)
     env["CARGO_PROFILE_RELEASE_OPT_LEVEL"] = opt_level
-    subprocess.run(["cargo", "build", "--release", "--bin", "firmware"], cwd=HERE,
+    subprocess.run(["cargo", "build", "--release", "--bin", "firmware"]
+                   + (["--features", features] if features else []), cwd=HERE,
                    env=env, check=True)
     target_dir = env.get("CARGO_TARGET_DIR", str(HERE / "target"))
     return Path(target_dir) / "thumbv7em-none-eabihf" / "release" / "firmware"
@@ -95,8 +96,9 @@ def short(sym):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--opt-level", default="s")
+    ap.add_argument("--features", default="", help="e.g. small-ik")
     args = ap.parse_args()
-    elf = build(args.opt_level)
+    elf = build(args.opt_level, args.features)
     size, graph = sizes(elf), calls(elf)
     print(f"\nUR5, thumbv7em-none-eabihf, release, opt-level \"{args.opt_level}\", LTO; bytes of .text\n")
     print("| function | f64 (soft-float) | f32 (FPU) |")

@@ -100,10 +100,15 @@ fn regular_first(
     pair: WristPair,
     out: &mut Candidates<6, 8>,
 ) {
-    // The lanes leave `out` untouched where they return `None`.
-    if !(pair == WristPair::HalfTurn && lanes(g, pose, out).is_some()) {
-        by_branch(g, pose, free, pair, out);
+    // The lanes leave `out` untouched where they return `None`. The `small-ik` feature
+    // leaves them out of the build: every pose one branch after another.
+    #[cfg(not(feature = "small-ik"))]
+    if pair == WristPair::HalfTurn && lanes(g, pose, out).is_some() {
+        return;
     }
+    #[cfg(feature = "small-ik")]
+    let _ = lanes;
+    by_branch(g, pose, free, pair, out);
 }
 
 #[cfg(test)]

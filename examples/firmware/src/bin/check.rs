@@ -148,7 +148,56 @@ fn flat<const R: usize, const C: usize>(m: [[f64; C]; R]) -> Vec<f64> {
     m.iter().flatten().copied().collect()
 }
 
+/// `check --same-ik A B`: the `ik` records of two firmware outputs (the default IK and the
+/// size-first one) hold the same solutions: count, flags and order equal, joint values to
+/// 1e-9 rad (f64) or 1e-6 (f32, rounded once from f64) — the two paths compute the same
+/// subproblems grouped differently, so they agree to rounding, not to the bit.
+fn same_ik(a: &str, b: &str) -> Result<usize, String> {
+    let read = |path: &str| {
+        std::fs::read_to_string(path)
+            .map_err(|e| format!("{path}: {e}"))
+            .and_then(|t| parse(&t))
+    };
+    let (a, b) = (read(a)?, read(b)?);
+    let mut solutions = 0;
+    for (key, x) in a.iter().filter(|(k, _)| k.2 == "ik") {
+        let y = b
+            .get(key)
+            .ok_or_else(|| format!("{key:?}: missing in the second output"))?;
+        let tolerance = if key.0 == "f64" { 1e-9 } else { 1e-6 };
+        let flag = |i: usize| i == 0 || (i - 1).is_multiple_of(7);
+        if x.len() != y.len() || (0..x.len()).any(|i| flag(i) && x[i] != y[i]) {
+            return Err(format!(
+                "{key:?}: solutions or flags differ: {x:?} vs {y:?}"
+            ));
+        }
+        if let Some(i) = (0..x.len()).find(|&i| (x[i] - y[i]).abs() > tolerance) {
+            return Err(format!("{key:?}: entry {i}: {} vs {}", x[i], y[i]));
+        }
+        solutions += x[0] as usize;
+    }
+    if b.keys().filter(|k| k.2 == "ik").count() != a.keys().filter(|k| k.2 == "ik").count() {
+        return Err("the outputs hold different `ik` records".into());
+    }
+    Ok(solutions)
+}
+
 fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    if let [_, flag, a, b] = args.as_slice() {
+        if flag == "--same-ik" {
+            return match same_ik(a, b) {
+                Ok(n) => {
+                    println!("check: the two IK paths give the same {n} solutions");
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("check: {e}");
+                    ExitCode::FAILURE
+                }
+            };
+        }
+    }
     let mut text = String::new();
     let read = match std::env::args().nth(1) {
         Some(path) => std::fs::read_to_string(&path)
@@ -208,7 +257,7 @@ fn main() -> ExitCode {
             want.extend(b.q);
         }
         f64_fw.check("ik", case, get("f64", case, "ik"), &want, &|i| {
-            if i == 0 || (i - 1) % 7 == 0 {
+            if i == 0 || (i - 1).is_multiple_of(7) {
                 0.0
             } else {
                 1e-9
@@ -256,7 +305,7 @@ fn main() -> ExitCode {
             want.extend(b.q.map(f64::from));
         }
         f32_fw.check("ik", case, get("f32", case, "ik"), &want, &|i| {
-            if i == 0 || (i - 1) % 7 == 0 {
+            if i == 0 || (i - 1).is_multiple_of(7) {
                 0.0
             } else {
                 1e-6
