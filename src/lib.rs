@@ -51,6 +51,7 @@
 //! - `serde`: `Serialize`/`Deserialize` for IK solutions ([`ik::IkSolutions`],
 //!   [`ik::IkBranch`], [`ik::IkSolution`]), trajectories ([`trajectory::Trapezoid`],
 //!   [`trajectory::Cubic`], [`trajectory::Quintic`], [`trajectory::Synchronized`],
+//!   [`trajectory::StopAtVias`], [`trajectory::ThroughVias`],
 //!   [`trajectory::CartesianLine`], stored as the inputs that define them and read back
 //!   through their constructors' checks), poses (nalgebra's types, through its own
 //!   feature) and [`SolveError`]; `Serialize` for the errors that hold `&'static str`

@@ -23,7 +23,8 @@ mod serde_round_trips {
     use kinegen::ik::{IkBranch, IkError, IkSolution, IkSolutions};
     use kinegen::nalgebra::{Isometry3, Vector3};
     use kinegen::trajectory::{
-        CartesianLine, Cubic, Profile, Quintic, Stretch, Synchronized, TrajectoryError, Trapezoid,
+        CartesianLine, Cubic, Profile, Quintic, StopAtVias, Stretch, Synchronized, ThroughVias,
+        TrajectoryError, Trapezoid,
     };
     use serde::{de::DeserializeOwned, Serialize};
 
@@ -159,6 +160,40 @@ mod serde_round_trips {
         assert!(checked >= 2_000 * 5, "{checked}");
     }
 
+    /// Paths through via points, every constructor, random points: equal bit for bit.
+    #[test]
+    fn via_point_paths_read_back_bit_for_bit() {
+        let mut rng = XorShift64::new(33);
+        for _ in 0..500 {
+            let points: [f64; 5] = core::array::from_fn(|_| uniform(&mut rng, -3.0, 3.0));
+            let mut times = [0.0; 5];
+            for i in 1..5 {
+                times[i] = times[i - 1] + uniform(&mut rng, 0.5, 4.0);
+            }
+            let (v, a) = (uniform(&mut rng, 1.0, 3.0), uniform(&mut rng, 2.0, 10.0));
+            let mut stops = vec![StopAtVias::new(points, v, a).unwrap()];
+            stops.extend(StopAtVias::with_times(points, times, v, a, Stretch::KeepVelocity).ok());
+            let joints = [points, points.map(|p| -p)];
+            let joints: [[f64; 2]; 5] = core::array::from_fn(|i| [joints[0][i], joints[1][i]]);
+            stops.extend(
+                StopAtVias::synchronized(joints, [v, 2.0], [a, 5.0], Stretch::KeepAcceleration)
+                    .unwrap(),
+            );
+            for p in stops {
+                assert_eq!(round_trip(&p), p);
+            }
+            let through = [
+                ThroughVias::new(points, times).unwrap(),
+                ThroughVias::with_limits(points, v, a).unwrap(),
+            ];
+            for p in through {
+                let back = round_trip(&p);
+                assert_eq!(back, p);
+                assert!(same_bits(back.via_velocities(), p.via_velocities()));
+            }
+        }
+    }
+
     #[test]
     fn a_cartesian_line_reads_back_with_its_poses() {
         let start = Isometry3::new(Vector3::new(0.4, -0.1, 0.3), Vector3::new(0.1, 0.2, -0.3));
@@ -214,6 +249,30 @@ mod serde_round_trips {
         );
         let err = serde_json::from_str::<Synchronized<2>>(&text).unwrap_err();
         assert!(err.to_string().contains("duration"), "{err}");
+        // Via-point paths whose segments do not join, or whose times do not fit them.
+        let path = StopAtVias::new([0.0, 1.0, 3.0], 1.0, 2.0).unwrap();
+        let text = serde_json::to_string(&path).unwrap();
+        let moved = text.replacen(r#""goal":1.0"#, r#""goal":1.5"#, 1);
+        let err = serde_json::from_str::<StopAtVias<3>>(&moved).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("segment 0 of the stored path: its end"),
+            "{err}"
+        );
+        // The second arrival 0.1 s later than its segment takes.
+        let mut late: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let t1 = late["times"][1].as_f64().unwrap();
+        late["times"][1] = (t1 + 0.1).into();
+        let err = serde_json::from_value::<StopAtVias<3>>(late).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("segment 0 of the stored path: its arrival time"),
+            "{err}"
+        );
+        assert!(serde_json::from_str::<ThroughVias<3>>(
+            r#"{"points":[0.0,1.0,2.0],"times":[0.0,2.0,1.0],"velocities":[0.0,0.5,0.0]}"#
+        )
+        .is_err());
         // A path parameter that does not run from 0 to 1.
         let line = CartesianLine::new(
             Isometry3::identity(),

@@ -87,6 +87,15 @@ pub enum TrajectoryError {
     /// The inputs were valid but the result overflowed (e.g. an enormous distance at a
     /// tiny velocity gives an infinite duration).
     Overflow,
+    /// A stored multi-segment path whose segments do not fit together: one ends where
+    /// the next does not start, or an arrival time is not the previous one plus the
+    /// segment's duration.
+    SegmentsDoNotJoin {
+        /// Index of the segment that does not fit.
+        segment: usize,
+        /// `"end"` or `"arrival time"`.
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for TrajectoryError {
@@ -146,6 +155,12 @@ impl fmt::Display for TrajectoryError {
                 "segment {segment} reaches a peak {what} of {peak}, above the limit {limit}"
             ),
             Self::Overflow => write!(f, "the trajectory's numbers overflow f64"),
+            Self::SegmentsDoNotJoin { segment, what } => {
+                write!(
+                    f,
+                    "segment {segment} of the stored path: its {what} does not fit the path"
+                )
+            }
         }
     }
 }

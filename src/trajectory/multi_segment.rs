@@ -70,6 +70,14 @@ fn segment_index<const K: usize>(times: &[f64; K], t: f64) -> usize {
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::StopAtViasParts<K>",
+        try_from = "super::stored::StopAtViasParts<K>"
+    )
+)]
 pub struct StopAtVias<const K: usize> {
     /// `segments[i]` goes from point `i` to `i + 1`; the last slot is unused.
     segments: [Trapezoid; K],
@@ -156,6 +164,45 @@ impl<const K: usize> StopAtVias<K> {
         &self.times
     }
 
+    /// Segments planned already (the last slot unused) and their arrival times: `Err`
+    /// unless they join (each ends where the next starts), the times start at 0 and
+    /// each is the previous plus its segment's duration (to rounding: `with_times`
+    /// takes the times as given). What a stored path is read back through.
+    #[cfg(feature = "serde")]
+    pub(super) fn from_parts(
+        segments: [Trapezoid; K],
+        times: [f64; K],
+    ) -> Result<Self, TrajectoryError> {
+        if K < 2 {
+            return Err(TrajectoryError::TooFewPoints { count: K });
+        }
+        if times[0] != 0.0 {
+            return Err(TrajectoryError::TimesNotIncreasing { index: 0 });
+        }
+        for i in 0..K - 1 {
+            let t = error::finite(times[i + 1], "via-point time")?;
+            let arrival = times[i] + segments[i].duration();
+            if math::abs(arrival - t) > 4.0 * f64::EPSILON * math::abs(t) {
+                let what = "arrival time";
+                return Err(TrajectoryError::SegmentsDoNotJoin { segment: i, what });
+            }
+            if i + 2 < K && segments[i].goal() != segments[i + 1].start() {
+                return Err(TrajectoryError::SegmentsDoNotJoin {
+                    segment: i,
+                    what: "end",
+                });
+            }
+        }
+        // The unused last slot stands at the last point, as the constructors leave it.
+        if segments[K - 1] != Trapezoid::at_rest(segments[K - 2].goal(), 0.0) {
+            return Err(TrajectoryError::SegmentsDoNotJoin {
+                segment: K - 2,
+                what: "end",
+            });
+        }
+        Ok(Self { segments, times })
+    }
+
     /// Segment `i` (from point `i` to `i + 1`), with its own local time from 0.
     pub fn segment(&self, i: usize) -> Option<&Trapezoid> {
         self.segments[..K - 1].get(i)
@@ -208,6 +255,14 @@ impl<const K: usize> Profile for StopAtVias<K> {
 /// # Ok::<(), kinegen::trajectory::TrajectoryError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "super::stored::ThroughViasPoints<K>",
+        try_from = "super::stored::ThroughViasPoints<K>"
+    )
+)]
 pub struct ThroughVias<const K: usize> {
     /// `segments[i]` goes from point `i` to `i + 1`; the last slot is unused.
     segments: [Cubic; K],

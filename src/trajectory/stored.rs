@@ -20,7 +20,8 @@
 //! ```
 
 use super::{
-    error, CartesianLine, Cubic, Profile, Quintic, Synchronized, TrajectoryError, Trapezoid,
+    error, CartesianLine, Cubic, Profile, Quintic, StopAtVias, Synchronized, ThroughVias,
+    TrajectoryError, Trapezoid,
 };
 use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
@@ -169,5 +170,74 @@ impl<P: Profile> TryFrom<LineEnds<P>> for CartesianLine<P> {
     type Error = TrajectoryError;
     fn try_from(s: LineEnds<P>) -> Result<Self, TrajectoryError> {
         CartesianLine::new(s.start, s.end, s.profile)
+    }
+}
+
+/// A path that stops at its via points: its trapezoids (the last slot unused) and the
+/// arrival times, which must fit them.
+#[derive(Serialize, Deserialize)]
+#[serde(bound = "")]
+pub(super) struct StopAtViasParts<const K: usize> {
+    #[serde(with = "BigArray")]
+    segments: [Trapezoid; K],
+    #[serde(with = "BigArray")]
+    times: [f64; K],
+}
+
+impl<const K: usize> From<StopAtVias<K>> for StopAtViasParts<K> {
+    fn from(path: StopAtVias<K>) -> Self {
+        // The last slot: standing at the last point (K ≥ 2 for every planned path).
+        let goal = path
+            .segment(K.saturating_sub(2))
+            .map_or(0.0, Trapezoid::goal);
+        let last = Trapezoid::at_rest(goal, 0.0);
+        StopAtViasParts {
+            segments: core::array::from_fn(|i| *path.segment(i).unwrap_or(&last)),
+            times: *path.arrival_times(),
+        }
+    }
+}
+
+impl<const K: usize> TryFrom<StopAtViasParts<K>> for StopAtVias<K> {
+    type Error = TrajectoryError;
+    fn try_from(s: StopAtViasParts<K>) -> Result<Self, TrajectoryError> {
+        StopAtVias::from_parts(s.segments, s.times)
+    }
+}
+
+/// A path through its via points: the points, their times and velocities.
+#[derive(Serialize, Deserialize)]
+#[serde(bound = "")]
+pub(super) struct ThroughViasPoints<const K: usize> {
+    #[serde(with = "BigArray")]
+    points: [f64; K],
+    #[serde(with = "BigArray")]
+    times: [f64; K],
+    #[serde(with = "BigArray")]
+    velocities: [f64; K],
+}
+
+impl<const K: usize> From<ThroughVias<K>> for ThroughViasPoints<K> {
+    fn from(path: ThroughVias<K>) -> Self {
+        // Point i is where segment i starts; the last, where the last segment ends
+        // (cubics return their boundary values exactly).
+        let points = core::array::from_fn(|i| match path.segment(i) {
+            Some(c) => c.position(0.0),
+            None => path
+                .segment(i - 1)
+                .map_or(0.0, |c| c.position(c.duration())),
+        });
+        ThroughViasPoints {
+            points,
+            times: *path.arrival_times(),
+            velocities: *path.via_velocities(),
+        }
+    }
+}
+
+impl<const K: usize> TryFrom<ThroughViasPoints<K>> for ThroughVias<K> {
+    type Error = TrajectoryError;
+    fn try_from(s: ThroughViasPoints<K>) -> Result<Self, TrajectoryError> {
+        ThroughVias::with_velocities(s.points, s.times, s.velocities)
     }
 }
