@@ -231,6 +231,12 @@ mod serde_round_trips {
                 "{text} was read"
             );
         }
+        let err = serde_json::from_str::<Trapezoid>(refused[0]).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("its acceleration time does not fit"),
+            "{err}"
+        );
         assert!(serde_json::from_str::<Cubic>(
             r#"{"start":[0.0,0.0],"end":[1.0,0.0],"duration":0.0}"#
         )
@@ -248,7 +254,11 @@ mod serde_round_trips {
             serde_json::to_string(&b).unwrap()
         );
         let err = serde_json::from_str::<Synchronized<2>>(&text).unwrap_err();
-        assert!(err.to_string().contains("duration"), "{err}");
+        assert!(
+            err.to_string()
+                .contains("part 1 of the stored profile: its duration"),
+            "{err}"
+        );
         // Via-point paths whose segments do not join, or whose times do not fit them.
         let path = StopAtVias::new([0.0, 1.0, 3.0], 1.0, 2.0).unwrap();
         let text = serde_json::to_string(&path).unwrap();
@@ -256,7 +266,7 @@ mod serde_round_trips {
         let err = serde_json::from_str::<StopAtVias<3>>(&moved).unwrap_err();
         assert!(
             err.to_string()
-                .contains("segment 0 of the stored path: its end"),
+                .contains("part 0 of the stored profile: its end"),
             "{err}"
         );
         // The second arrival 0.1 s later than its segment takes.
@@ -266,7 +276,7 @@ mod serde_round_trips {
         let err = serde_json::from_value::<StopAtVias<3>>(late).unwrap_err();
         assert!(
             err.to_string()
-                .contains("segment 0 of the stored path: its arrival time"),
+                .contains("part 0 of the stored profile: its arrival time"),
             "{err}"
         );
         assert!(serde_json::from_str::<ThroughVias<3>>(

@@ -87,13 +87,15 @@ pub enum TrajectoryError {
     /// The inputs were valid but the result overflowed (e.g. an enormous distance at a
     /// tiny velocity gives an infinite duration).
     Overflow,
-    /// A stored multi-segment path whose segments do not fit together: one ends where
-    /// the next does not start, or an arrival time is not the previous one plus the
-    /// segment's duration.
-    SegmentsDoNotJoin {
-        /// Index of the segment that does not fit.
-        segment: usize,
-        /// `"end"` or `"arrival time"`.
+    /// A profile read back with the `serde` feature whose parts do not fit together: a
+    /// trapezoid whose blends take more than its duration, a via-point path whose
+    /// segment ends where the next does not start or arrives off its time, synchronised
+    /// joints that do not share one duration.
+    PartsDoNotFit {
+        /// Which part: the segment's or joint's index (0 for a single profile).
+        part: usize,
+        /// What of it does not fit: `"end"`, `"arrival time"`, `"duration"` or
+        /// `"acceleration time"`.
         what: &'static str,
     },
 }
@@ -155,10 +157,10 @@ impl fmt::Display for TrajectoryError {
                 "segment {segment} reaches a peak {what} of {peak}, above the limit {limit}"
             ),
             Self::Overflow => write!(f, "the trajectory's numbers overflow f64"),
-            Self::SegmentsDoNotJoin { segment, what } => {
+            Self::PartsDoNotFit { part, what } => {
                 write!(
                     f,
-                    "segment {segment} of the stored path: its {what} does not fit the path"
+                    "part {part} of the stored profile: its {what} does not fit the rest"
                 )
             }
         }

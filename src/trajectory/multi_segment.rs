@@ -184,19 +184,19 @@ impl<const K: usize> StopAtVias<K> {
             let arrival = times[i] + segments[i].duration();
             if math::abs(arrival - t) > 4.0 * f64::EPSILON * math::abs(t) {
                 let what = "arrival time";
-                return Err(TrajectoryError::SegmentsDoNotJoin { segment: i, what });
+                return Err(TrajectoryError::PartsDoNotFit { part: i, what });
             }
             if i + 2 < K && segments[i].goal() != segments[i + 1].start() {
-                return Err(TrajectoryError::SegmentsDoNotJoin {
-                    segment: i,
+                return Err(TrajectoryError::PartsDoNotFit {
+                    part: i,
                     what: "end",
                 });
             }
         }
         // The unused last slot stands at the last point, as the constructors leave it.
         if segments[K - 1] != Trapezoid::at_rest(segments[K - 2].goal(), 0.0) {
-            return Err(TrajectoryError::SegmentsDoNotJoin {
-                segment: K - 2,
+            return Err(TrajectoryError::PartsDoNotFit {
+                part: K - 2,
                 what: "end",
             });
         }

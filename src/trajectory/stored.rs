@@ -64,7 +64,8 @@ impl TryFrom<TrapezoidTiming> for Trapezoid {
         // The two blends must fit in the duration: t_a ≤ T/2. A triangular profile has
         // t_a = T/2 up to the rounding of T = 2·t_a, hence the few ulps.
         if !(t_a > 0.0 && t_a <= 0.5 * duration * (1.0 + 4.0 * f64::EPSILON)) {
-            return Err(TrajectoryError::InvalidDuration { value: duration });
+            let what = "acceleration time";
+            return Err(TrajectoryError::PartsDoNotFit { part: 0, what });
         }
         Trapezoid::from_timing(q0, q1, t_a, duration)
     }

@@ -87,10 +87,9 @@ impl<const N: usize> Synchronized<N> {
     /// Joints planned already, which must all take the same time (`Err` otherwise).
     pub(super) fn from_joints(joints: [Trapezoid; N]) -> Result<Self, TrajectoryError> {
         let duration = joints.first().map_or(0.0, Trapezoid::duration);
-        if let Some(j) = joints.iter().find(|j| j.duration() != duration) {
-            return Err(TrajectoryError::InvalidDuration {
-                value: j.duration(),
-            });
+        if let Some(part) = joints.iter().position(|j| j.duration() != duration) {
+            let what = "duration";
+            return Err(TrajectoryError::PartsDoNotFit { part, what });
         }
         Ok(Self { joints, duration })
     }
