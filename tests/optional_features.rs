@@ -1,5 +1,5 @@
-//! The optional features, each on its own (CI runs this file with
-//! `--features serde,mint`; the default suite compiles it to nothing):
+//! The optional features (the suite turns `serde` and `mint` on through the root's
+//! dev-dependency on itself; built without them, this file is empty):
 //! - `serde`: IK solutions, trajectories and poses read back bit for bit; stored
 //!   trajectories that break a constructor's invariant are refused; a solution set longer
 //!   than its capacity is refused;
