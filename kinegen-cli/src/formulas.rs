@@ -9,6 +9,7 @@ use std::collections::BTreeSet;
 use std::fmt::Write;
 
 use kinegen_core::algebra::graph::Id;
+use kinegen_core::emit::angle_names::AngleName;
 use kinegen_core::emit::code::{Body, Coder, OpCount};
 use kinegen_core::emit::latex::{self, latex_name, Block, Equation};
 use kinegen_core::kinematics::model::Model;
@@ -282,37 +283,7 @@ fn identifiers(body: &Body) -> BTreeSet<String> {
 /// joints (`c23`; `c1_2_3` with ten or more joints), and `nc23` its negation: spell
 /// out which sum.
 fn angle_sum(name: &str) -> Option<(String, String)> {
-    if let Some((text, tex)) = name.strip_prefix('n').and_then(angle_sum) {
-        return Some((format!("-{text}"), format!("-{tex}")));
-    }
-    let (f, rest) = match name.split_at(1) {
-        ("s", r) => ("sin", r),
-        ("c", r) => ("cos", r),
-        _ => return None,
-    };
-    let joints: Vec<&str> = if rest.contains('_') {
-        rest.split('_').collect()
-    } else {
-        rest.split_terminator("").skip(1).collect()
-    };
-    if joints.len() < 2
-        || !joints
-            .iter()
-            .all(|j| !j.is_empty() && j.chars().all(|c| c.is_ascii_digit()))
-    {
-        return None;
-    }
-    let text = joints
-        .iter()
-        .map(|j| format!("q{j}"))
-        .collect::<Vec<_>>()
-        .join(" + ");
-    let tex = joints
-        .iter()
-        .map(|j| format!("q_{{{j}}}"))
-        .collect::<Vec<_>>()
-        .join(" + ");
-    Some((format!("{f}({text})"), format!(r"\{f}\left({tex}\right)")))
+    AngleName::parse(name).map(|n| (n.text(), n.latex()))
 }
 
 fn header_text(chain: &Chain) -> String {
@@ -397,8 +368,14 @@ fn rhs_latex(l: &Line) -> String {
 fn render_latex(chain: &Chain, sections: &[Section]) -> String {
     let mut blocks = Vec::new();
     let mut intro = latex::escape_text(header_text(chain).trim_end()).replace('\n', "\\\\\n");
-    intro
-        .push_str(r"\\ Indices are 1-based; $s_{i} = \sin q_{i}$, $c_{ij} = \cos(q_{i} + q_{j})$.");
+    intro.push_str(r"\\ Indices are 1-based; $s_{i} = \sin q_{i}$, $c_{ij} = \cos(q_{i} + q_{j})$");
+    let difference = |l: &Line| {
+        AngleName::parse(&l.text_lhs).is_some_and(|n| n.joints.iter().any(|&(_, minus)| minus))
+    };
+    if sections.iter().flat_map(|s| &s.defs).any(difference) {
+        intro.push_str(r", $c_{i-j} = \cos(q_{i} - q_{j})$");
+    }
+    intro.push('.');
     blocks.push(Block {
         title: intro,
         equations: vec![],
@@ -453,6 +430,7 @@ mod tests {
         );
         assert_eq!(angle_sum("c1_2_3").unwrap().0, "cos(q1 + q2 + q3)");
         assert_eq!(angle_sum("nc23").unwrap().0, "-cos(q2 + q3)");
+        assert_eq!(angle_sum("c2m3").unwrap().0, "cos(q2 - q3)");
         assert_eq!(angle_sum("c1"), None);
         assert_eq!(angle_sum("t12"), None);
         assert_eq!(angle_sum("s_k1"), None);

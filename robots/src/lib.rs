@@ -247,6 +247,11 @@ pub const URDFS: &[(&str, &str, &str)] = &[
         include_str!("../urdf/crx10ial.urdf"),
     ),
     (
+        "urdf/fanucLRMate200ib.urdf",
+        "robots/urdf/fanucLRMate200ib.urdf",
+        include_str!("../urdf/fanucLRMate200ib.urdf"),
+    ),
+    (
         "urdf/kinova_gen3.urdf",
         "robots/urdf/kinova_gen3.urdf",
         include_str!("../urdf/kinova_gen3.urdf"),
@@ -285,5 +290,10 @@ pub const URDFS: &[(&str, &str, &str)] = &[
         "urdf/wx250.urdf",
         "robots/urdf/wx250.urdf",
         include_str!("../urdf/wx250.urdf"),
+    ),
+    (
+        "urdf/yaskawaMotomanMH5.urdf",
+        "robots/urdf/yaskawaMotomanMH5.urdf",
+        include_str!("../urdf/yaskawaMotomanMH5.urdf"),
     ),
 ];

@@ -215,6 +215,15 @@ kinegen::kinematics! {
     snap: 0,
 }
 
+kinegen::kinematics! {
+    /// ROS-Industrial's file: joint 3 about `0 -1 0` after joint 2 about `0 1 0`, so the
+    /// formulas are in q2 − q3 (`s2m3`, `c2m3`).
+    struct LrMate200ib = urdf("urdf/fanucLRMate200ib.urdf", tip = "tool0");
+}
+kinegen::kinematics! {
+    struct MotomanMh5 = urdf("urdf/yaskawaMotomanMH5.urdf");
+}
+
 /// The bounds the generated type states for its snaps, read back from the chain.
 fn snap_bounds(file: &str, base: Option<&str>, tip: Option<&str>) -> (f64, f64) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
@@ -258,6 +267,13 @@ fn snapped_urdf_robots_stay_within_their_stated_bounds() {
     let b = snap_bounds("urdf/kinova_j2s6s.urdf", None, None);
     assert!(b.0 > 1e-6, "3.1416 and 1.5708 are snapped: {b:?}");
     check(&Kinova, &kinova, 1e-9, b, &[]);
+    // ROS-Industrial's files, joints about −y after +y (formulas in q2 − q3).
+    let lr_mate = reference_chain("urdf/fanucLRMate200ib.urdf", "base_link", "tool0");
+    let b = snap_bounds("urdf/fanucLRMate200ib.urdf", None, Some("tool0"));
+    check(&LrMate200ib, &lr_mate, 1e-9, b, &[]);
+    let mh5 = reference_chain("urdf/yaskawaMotomanMH5.urdf", "base_link", "link_t");
+    let b = snap_bounds("urdf/yaskawaMotomanMH5.urdf", None, None);
+    check(&MotomanMh5, &mh5, 1e-9, b, &[]);
 }
 
 /// The UR5 and Panda from their URDFs are the DH robots: the UR5's base_link is the DH

@@ -1,10 +1,14 @@
-//! Reading polynomials back as trigonometry: `a2 c2 c3 − a2 s2 s3` → `a2·cos(q2+q3)`.
+//! Reading polynomials back as trigonometry: `a2 c2 c3 − a2 s2 s3` → `a2·cos(q2+q3)`,
+//! `a2 c2 c3 + a2 s2 s3` → `a2·cos(q2-q3)`.
 //!
 //! A normal form in `s_i`, `c_i` is exact but long; people write sines and cosines of
-//! angle sums. This module rewrites a polynomial greedily as a sum of terms
-//! `coefficient · (other variables) · Π sin/cos(q_i + … + q_j)` over runs of consecutive
-//! joints, taking at each step the grouping that absorbs the most terms, and checks the
-//! result expands back to the same normal form (else it keeps the plain form).
+//! angle sums and differences. This module rewrites a polynomial greedily as a sum of
+//! terms `coefficient · (other variables) · Π sin/cos(q_i ± … ± q_j)` over runs of
+//! consecutive joints, taking at each step the grouping that absorbs the most terms
+//! (plain sums first, so a difference is taken only where it absorbs more), and checks
+//! the result expands back to the same normal form (else it keeps the plain form).
+//! Differences come from joints that turn the other way (a URDF axis along −y after
+//! one along +y).
 
 use std::collections::BTreeMap;
 
@@ -14,13 +18,14 @@ use crate::algebra::angles::{AngleDef, AngleSource};
 use crate::algebra::poly::{Mono, Poly, Ring, Var};
 use crate::model::value::{fmt_rat, Rat};
 
-/// `sin` or `cos` of the sum of joint angles `first..=last` (1-based joint numbers).
+/// `sin` or `cos` of a signed sum of consecutive joint angles (`q2 - q3 + q4`).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct SumTrig {
     /// true for sin.
     pub sin: bool,
-    /// Angles (indices into the angle list) summed, consecutive joints.
-    pub angles: Vec<usize>,
+    /// Angles (indices into the angle list) of consecutive joints, each `true` where it
+    /// is subtracted; the first is never subtracted.
+    pub angles: Vec<(usize, bool)>,
 }
 
 /// One term: `coef · rest · Π trig`.
@@ -61,8 +66,10 @@ impl Angles {
 /// The normal form of `sin`/`cos` of a sum of the chain's angles.
 pub fn sum_nf(ring: &Ring, angles: &[AngleDef], t: &SumTrig) -> Poly {
     let (mut s, mut c) = (Poly::zero(), Poly::one());
-    for &a in &t.angles {
+    for &(a, minus) in &t.angles {
         let (sa, ca) = (Poly::var(angles[a].vars.0), Poly::var(angles[a].vars.1));
+        // sin(−x) = −sin x, cos(−x) = cos x.
+        let sa = if minus { sa.neg() } else { sa };
         let ns = ring.mul(&s, &ca).add(&ring.mul(&c, &sa));
         let nc = ring.mul(&c, &ca).sub(&ring.mul(&s, &sa));
         s = ns;
@@ -136,7 +143,11 @@ pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTer
     // Read in joint order: a2*cos(q2) + a3*cos(q2+q3) + d5*sin(q2+q3+q4).
     out.sort_by(|a, b| {
         let key = |t: &TrigTerm| {
-            let mut angles: Vec<usize> = t.trig.iter().flat_map(|f| f.angles.clone()).collect();
+            let mut angles: Vec<usize> = t
+                .trig
+                .iter()
+                .flat_map(|f| f.angles.iter().map(|&(a, _)| a))
+                .collect();
             angles.sort_unstable();
             (angles.len(), angles, t.rest.clone())
         };
@@ -154,7 +165,11 @@ pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTer
     (sum == *p).then_some(out)
 }
 
-/// Ways to group a term's trigonometric variables into sums over consecutive joints.
+/// Most groupings tried for one term (a term with six joints' variables has 243).
+const MAX_GROUPINGS: usize = 1024;
+
+/// Ways to group a term's trigonometric variables into signed sums over consecutive
+/// joints: every plain grouping first, then those with differences.
 fn groupings(singles: &[(usize, bool, u32)], ang: &Angles) -> Vec<Vec<SumTrig>> {
     // Variables with exponent 1 on joint angles can join runs; the rest stay single.
     let mut fixed = Vec::new();
@@ -166,75 +181,123 @@ fn groupings(singles: &[(usize, bool, u32)], ang: &Angles) -> Vec<Vec<SumTrig>> 
             for _ in 0..e {
                 fixed.push(SumTrig {
                     sin: s,
-                    angles: vec![a],
+                    angles: vec![(a, false)],
                 });
             }
         }
     }
     runnable.sort_by_key(|&(a, _)| ang.joint_of[a]);
-    // All ways to cut the sorted list into runs of consecutive joints.
-    let mut results = Vec::new();
     let n = runnable.len();
     if n == 0 {
         return vec![fixed];
     }
+    // All ways to cut the sorted list into runs of consecutive joints.
+    let mut cuts: Vec<Vec<&[(usize, bool)]>> = Vec::new();
     for mask in 0u32..(1 << (n - 1)) {
         // bit i set: cut between i and i+1
-        let mut groups: Vec<SumTrig> = fixed.clone();
-        let mut cur: Vec<(usize, bool)> = vec![runnable[0]];
+        let mut runs = Vec::new();
+        let mut begin = 0;
         let mut ok = true;
         for i in 1..n {
             let cut = mask & (1 << (i - 1)) != 0;
             let consecutive =
                 ang.joint_of[runnable[i].0] == ang.joint_of[runnable[i - 1].0].map(|j| j + 1);
             if cut {
-                groups.push(close(&cur));
-                cur = vec![runnable[i]];
-            } else if consecutive {
-                cur.push(runnable[i]);
-            } else {
+                runs.push(&runnable[begin..i]);
+                begin = i;
+            } else if !consecutive {
                 ok = false;
                 break;
             }
         }
-        if !ok {
-            continue;
+        if ok {
+            runs.push(&runnable[begin..]);
+            cuts.push(runs);
         }
-        groups.push(close(&cur));
-        results.push(groups);
-        if results.len() > 64 {
-            break;
+    }
+    // Each run of k angles has 2^(k−1) sign patterns (bit j: angle j+1 subtracted);
+    // pattern 0 everywhere is the plain sum.
+    let mut results = Vec::new();
+    for with_differences in [false, true] {
+        for runs in &cuts {
+            let sizes: Vec<u32> = runs.iter().map(|r| 1 << (r.len() - 1)).collect();
+            let total: u32 = sizes.iter().product();
+            let patterns = if with_differences { 1..total } else { 0..1 };
+            for mut code in patterns {
+                let mut groups: Vec<SumTrig> = fixed.clone();
+                for (run, size) in runs.iter().zip(&sizes) {
+                    groups.push(close(run, code % size));
+                    code /= size;
+                }
+                results.push(groups);
+                if results.len() >= MAX_GROUPINGS {
+                    return results;
+                }
+            }
         }
     }
     results
 }
 
-fn close(run: &[(usize, bool)]) -> SumTrig {
+/// A run's sine or cosine: the monomial's parity of sines decides which; `minus` has
+/// bit j set where angle j + 1 of the run is subtracted.
+fn close(run: &[(usize, bool)], minus: u32) -> SumTrig {
     let sines = run.iter().filter(|(_, s)| *s).count();
     SumTrig {
         sin: sines % 2 == 1,
-        angles: run.iter().map(|(a, _)| *a).collect(),
+        angles: run
+            .iter()
+            .enumerate()
+            .map(|(j, &(a, _))| (a, j > 0 && minus & (1 << (j - 1)) != 0))
+            .collect(),
     }
 }
 
-/// Text of an angle sum: `q2+q3`.
-pub fn angle_text(defs: &[AngleDef], angles: &[usize]) -> String {
-    let parts: Vec<String> = angles
+/// The angles of a signed sum as text, each with `true` where it is subtracted.
+fn angle_parts(defs: &[AngleDef], angles: &[(usize, bool)]) -> Vec<(String, bool)> {
+    angles
         .iter()
-        .map(|&a| match &defs[a].source {
-            AngleSource::Joint {
-                joint,
-                sign,
-                offset,
-            } if *sign > 0 => match offset.is_zero() {
-                true => format!("q{}", joint + 1),
-                false => format!("(q{} + {offset})", joint + 1),
-            },
-            s @ AngleSource::Joint { .. } => format!("({})", s.text()),
-            AngleSource::Constant(v) => format!("{v}"),
+        .map(|&(a, minus)| {
+            let text = match &defs[a].source {
+                AngleSource::Joint {
+                    joint,
+                    sign,
+                    offset,
+                } if *sign > 0 => match offset.is_zero() {
+                    true => format!("q{}", joint + 1),
+                    false => format!("(q{} + {offset})", joint + 1),
+                },
+                s @ AngleSource::Joint { .. } => format!("({})", s.text()),
+                AngleSource::Constant(v) => format!("{v}"),
+            };
+            (text, minus)
         })
-        .collect();
-    parts.join("+")
+        .collect()
+}
+
+/// Text of a signed angle sum: `q2+q3`, `q2-q3`.
+pub fn angle_text(defs: &[AngleDef], angles: &[(usize, bool)]) -> String {
+    let mut s = String::new();
+    for (k, (text, minus)) in angle_parts(defs, angles).into_iter().enumerate() {
+        if k > 0 {
+            s.push(if minus { '-' } else { '+' });
+        }
+        s.push_str(&text);
+    }
+    s
+}
+
+/// A term's trigonometric factors with equal neighbours counted: `cos(q3)·cos(q3)` is
+/// `cos(q3)^2` to a reader.
+fn powers(trig: &[SumTrig]) -> Vec<(&SumTrig, usize)> {
+    let mut out: Vec<(&SumTrig, usize)> = Vec::new();
+    for f in trig {
+        match out.last_mut() {
+            Some((g, n)) if *g == f => *n += 1,
+            _ => out.push((f, 1)),
+        }
+    }
+    out
 }
 
 /// Plain-text formula of a rewritten polynomial (`a2*cos(q2) + a3*cos(q2+q3)`).
@@ -257,12 +320,17 @@ pub fn text(ring: &Ring, angles: &[AngleDef], terms: &[TrigTerm]) -> String {
             let n = ring.name(v).to_string();
             parts.push(if e == 1 { n } else { format!("{n}^{e}") });
         }
-        for f in &t.trig {
-            parts.push(format!(
+        for (f, power) in powers(&t.trig) {
+            let f = format!(
                 "{}({})",
                 if f.sin { "sin" } else { "cos" },
                 angle_text(angles, &f.angles)
-            ));
+            );
+            parts.push(if power == 1 {
+                f
+            } else {
+                format!("{f}^{power}")
+            });
         }
         if parts.is_empty() {
             parts.push("1".into());
@@ -306,15 +374,22 @@ pub fn latex(ring: &Ring, angles: &[AngleDef], terms: &[TrigTerm]) -> String {
             let n = sub(ring.name(v));
             parts.push(if e == 1 { n } else { format!("{n}^{{{e}}}") });
         }
-        for f in &t.trig {
-            let arg: Vec<String> = angle_text(angles, &f.angles)
-                .split('+')
-                .map(|x| sub(x.trim()))
-                .collect();
+        for (f, power) in powers(&t.trig) {
+            let mut arg = String::new();
+            for (k, (text, minus)) in angle_parts(angles, &f.angles).into_iter().enumerate() {
+                if k > 0 {
+                    arg.push_str(if minus { " - " } else { " + " });
+                }
+                let terms: Vec<String> = text.split('+').map(|x| sub(x.trim())).collect();
+                arg.push_str(&terms.join(" + "));
+            }
+            let power = match power {
+                1 => String::new(),
+                p => format!("^{{{p}}}"),
+            };
             parts.push(format!(
-                "\\{}({})",
+                "\\{}{power}({arg})",
                 if f.sin { "sin" } else { "cos" },
-                arg.join(" + ")
             ));
         }
         if parts.is_empty() {

@@ -5,15 +5,16 @@
 //! nodes used once are inlined into their single user. Sines and cosines come first:
 //! the joint angles of an f64 robot in one `sin_cos_n` call (SIMD lanes), any other
 //! angle (and every angle of an f32 robot) with one `sin_cos` each; intermediates
-//! whose value is the sine or cosine of a sum of joint angles are named after it (`c23`).
+//! whose value is the sine or cosine of a sum or difference of joint angles are named
+//! after it (`c23`, `c2m3`: [`AngleName`](crate::emit::angle_names::AngleName)).
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
-use std::fmt::Write;
 
 use crate::algebra::angles::AngleSource;
 use crate::algebra::graph::{Graph, Id, Node};
 use crate::algebra::poly::{Poly, VarKind};
 use crate::chain::Chain;
+use crate::emit::angle_names::AngleName;
 use crate::kinematics::frames::SymbolicChain;
 use crate::model::robot::{JointKind, Scalar};
 use crate::model::value::{rat_to_f64, Value};
@@ -425,7 +426,13 @@ fn batched_sin_cos(batch: &[(String, String, String)]) -> String {
 /// Largest expansion of an angle sum given a name (sums of up to 8 angles).
 const MAX_NAMED_SUM_TERMS: usize = 128;
 
-/// Normal forms of sin/cos of sums of consecutive revolute joint angles → `s23`, `c23`.
+/// Longest run of joints whose differences get names (`c2m34`): every sign pattern
+/// of a run of k joints is 2^(k−1) names, so longer runs name their plain sum only.
+const MAX_NAMED_DIFFERENCE: usize = 4;
+
+/// Normal forms of sin/cos of sums and differences of consecutive revolute joint
+/// angles → `s23`, `c23`, `c2m3` ([`AngleName`]). A plain sum keeps its name where a
+/// difference has the same normal form.
 pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Poly, String> {
     let ring = &sym.graph.ring;
     let joint_angle: Vec<Option<(Poly, Poly)>> = chain
@@ -443,28 +450,52 @@ pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Pol
             })
         })
         .collect();
-    let mut out = HashMap::new();
+    // A run's joints (1-based, subtracted ones marked) with sin and cos of its angle.
+    type Run = (Vec<(usize, bool)>, Poly, Poly);
+    let mut plain = HashMap::new();
+    let mut differences = HashMap::new();
     for start in 0..joint_angle.len() {
-        let Some((mut s, mut c)) = joint_angle[start].clone() else {
+        let Some((s, c)) = joint_angle[start].clone() else {
             continue;
         };
-        let mut label = format!("{}", start + 1);
+        let mut runs: Vec<Run> = vec![(vec![(start + 1, false)], s, c)];
         for (k, next) in joint_angle.iter().enumerate().skip(start + 1) {
             let Some((s2, c2)) = next else { break };
-            // sin/cos of a sum of k angles has 2^(k−1) terms: past a few joints the
-            // expansion costs more than a name is worth (and grows without bound).
-            if s.len() >= MAX_NAMED_SUM_TERMS {
-                break;
+            let length = k - start + 1;
+            let mut longer = Vec::new();
+            for (joints, s, c) in &runs {
+                // sin/cos of a sum of k angles has 2^(k−1) terms: past a few joints the
+                // expansion costs more than a name is worth (and grows without bound).
+                let is_plain = joints.iter().all(|&(_, minus)| !minus);
+                if s.len() >= MAX_NAMED_SUM_TERMS || !(is_plain || length <= MAX_NAMED_DIFFERENCE) {
+                    continue;
+                }
+                for minus in [false, true] {
+                    if minus && length > MAX_NAMED_DIFFERENCE {
+                        continue;
+                    }
+                    // sin(−x) = −sin x, cos(−x) = cos x.
+                    let s2 = if minus { s2.neg() } else { s2.clone() };
+                    let ns = ring.mul(s, c2).add(&ring.mul(c, &s2));
+                    let nc = ring.mul(c, c2).sub(&ring.mul(s, &s2));
+                    let mut joints = joints.clone();
+                    joints.push((k + 1, minus));
+                    let label = AngleName::label(&joints, chain.dof());
+                    let names = if is_plain && !minus {
+                        &mut plain
+                    } else {
+                        &mut differences
+                    };
+                    names.entry(ns.clone()).or_insert(format!("s{label}"));
+                    names.entry(nc.clone()).or_insert(format!("c{label}"));
+                    longer.push((joints, ns, nc));
+                }
             }
-            let ns = ring.mul(&s, c2).add(&ring.mul(&c, s2));
-            let nc = ring.mul(&c, c2).sub(&ring.mul(&s, s2));
-            s = ns;
-            c = nc;
-            let sep = if chain.dof() >= 10 { "_" } else { "" };
-            let _ = write!(label, "{sep}{}", k + 1);
-            out.entry(s.clone()).or_insert(format!("s{label}"));
-            out.entry(c.clone()).or_insert(format!("c{label}"));
+            runs = longer;
         }
     }
-    out
+    for (p, name) in differences {
+        plain.entry(p).or_insert(name);
+    }
+    plain
 }

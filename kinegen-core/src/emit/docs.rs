@@ -4,6 +4,7 @@
 use std::fmt::Write;
 
 use crate::chain::Chain;
+use crate::emit::angle_names::AngleName;
 use crate::emit::code::Body;
 
 /// The robot type's rustdoc: what the robot is, the front end's summary (a DH table),
@@ -70,27 +71,10 @@ pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
     s
 }
 
-/// `c23` → `cos(q2+q3)`, `s1_2` → `sin(q1+q2)`, `nc23` → `−cos(q2+q3)`: what an
-/// angle-sum name means.
+/// `c23` → `cos(q2+q3)`, `s1_2` → `sin(q1+q2)`, `c2m3` → `cos(q2-q3)`, `nc23` →
+/// `−cos(q2+q3)`: what an angle-sum name means (the names: [`AngleName`]).
 pub fn angle_sum_meaning(name: &str) -> Option<String> {
-    if let Some(m) = name.strip_prefix('n').and_then(angle_sum_meaning) {
-        return Some(format!("−{m}"));
-    }
-    let f = match name.chars().next()? {
-        's' => "sin",
-        'c' => "cos",
-        _ => return None,
-    };
-    let rest = &name[1..];
-    if rest.is_empty() || !rest.chars().all(|c| c.is_ascii_digit() || c == '_') {
-        return None;
-    }
-    let joints: Vec<String> = if rest.contains('_') {
-        rest.split('_').map(|j| format!("q{j}")).collect()
-    } else {
-        rest.chars().map(|j| format!("q{j}")).collect()
-    };
-    (joints.len() >= 2).then(|| format!("{f}({})", joints.join("+")))
+    AngleName::parse(name).map(|n| n.compact_text())
 }
 
 /// `T[0][0]`, `T[0][1]`, …: the entry names of a `rows × cols` matrix, row-major.

@@ -18,6 +18,8 @@ use std::fmt::Write;
 
 use syn::{BinOp, Expr, Lit, UnOp};
 
+use crate::emit::angle_names::AngleName;
+
 /// A formula the renderer does not understand (not produced by the engine).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FormulaError {
@@ -235,17 +237,16 @@ const GREEK: &[&str] = &[
 /// A variable name in textbook notation: `c23` → `c_{23}`, `L1` → `L_{1}`,
 /// `s_k1` → `s_{k1}`, `c1_2` → `c_{1,2}` (angle sums of robots with ten or more joints),
 /// `alpha2` → `\alpha_{2}`, `d_bs` → `d_{bs}`, `q` → `q`, the joint rates `qd3` →
-/// `\dot{q}_{3}`, and the negated angle sums of generated code `nc23` → `\bar{c}_{23}`
-/// (= −c₂₃).
+/// `\dot{q}_{3}`, the negated angle sums of generated code `nc23` → `\bar{c}_{23}`
+/// (= −c₂₃), and differences `c2m3` → `c_{2-3}` (= cos(q₂ − q₃)).
 pub fn latex_name(name: &str) -> String {
-    if let Some(rest) = name.strip_prefix('n') {
-        let sum = rest.len() >= 3
-            && rest.starts_with(['s', 'c'])
-            && rest[1..].chars().all(|c| c.is_ascii_digit() || c == '_');
-        if sum {
-            let plain = latex_name(rest);
-            return format!(r"\bar{{{}}}{}", &plain[..1], &plain[1..]);
-        }
+    if let Some(sum) = AngleName::parse(name) {
+        let f = if sum.sin { "s" } else { "c" };
+        let f = match sum.negated {
+            true => format!(r"\bar{{{f}}}"),
+            false => f.to_string(),
+        };
+        return format!("{f}_{{{}}}", sum.latex_subscript(name));
     }
     // Joint rates `qd3` are q̇₃.
     if let Some(j) = name.strip_prefix("qd") {
@@ -383,6 +384,9 @@ mod tests {
         assert_eq!(latex_name("qd_x"), r"\mathrm{qd}_{x}");
         assert_eq!(latex_name("s_k1"), "s_{k1}");
         assert_eq!(latex_name("c1_2_3"), "c_{1,2,3}");
+        assert_eq!(latex_name("c2m3"), "c_{2-3}");
+        assert_eq!(latex_name("ns2m34"), r"\bar{s}_{2-3+4}");
+        assert_eq!(latex_name("c9_m10"), "c_{9-10}");
         assert_eq!(latex_name("alpha2"), r"\alpha_{2}");
         assert_eq!(latex_name("pi"), r"\pi");
         assert_eq!(latex_name("d_bs"), "d_{bs}");

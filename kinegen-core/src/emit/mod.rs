@@ -1,7 +1,8 @@
 //! Emission: the symbolic outputs printed, nothing built.
 //!
 //! - [`code`]: straight-line code as Rust statements (shared `let`s, batched
-//!   `sin_cos_n`, angle-sum names) and operation counts.
+//!   `sin_cos_n`, angle-sum names) and operation counts; [`angle_names`] what those
+//!   names (`c23`, `c2m3`) mean.
 //! - [`functions`]: what the generated type holds — each method's body and doc, the
 //!   constants — as values; [`second_order`] its second-order methods.
 //! - [`item`]: a method or a constant of the generated `impl`, as a value.
@@ -10,6 +11,7 @@
 //!   `FORMULAS`, LaTeX).
 //! - [`rust`]: the item printed and parsed into tokens.
 
+pub mod angle_names;
 pub mod code;
 pub mod docs;
 pub mod formulas;
