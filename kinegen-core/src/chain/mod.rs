@@ -62,6 +62,56 @@ impl Elem {
             Elem::Rot(a, _) | Elem::Trans(a, _) => *a,
         }
     }
+
+    /// Consecutive translations gathered, one per axis in the order the axes first
+    /// appear (translations commute), exactly: `Tx(0.042825) Tx(0.025875) Tx(0.0385)`
+    /// — fixed URDF joints in a row — is `Tx(0.1072)`; a sum that is zero is left out.
+    /// Rotations stay where they are.
+    ///
+    /// ```
+    /// use kinegen_core::chain::{Axis, Elem};
+    /// use kinegen_core::model::value::Value;
+    /// let t = |a, x: f64| Elem::Trans(a, Value::from_f64(x).unwrap());
+    /// let merged = Elem::merge_translations(vec![t(Axis::X, 0.5), t(Axis::Z, 1.0), t(Axis::X, 0.25)]);
+    /// assert_eq!(merged, vec![t(Axis::X, 0.75), t(Axis::Z, 1.0)]);
+    /// ```
+    pub fn merge_translations(elems: Vec<Elem>) -> Vec<Elem> {
+        let mut out: Vec<Elem> = Vec::with_capacity(elems.len());
+        // Where the current run of translations starts in `out`.
+        let mut run = 0;
+        for e in elems {
+            match e {
+                Elem::Trans(axis, v) => {
+                    let same = out[run..]
+                        .iter_mut()
+                        .find(|x| matches!(x, Elem::Trans(a, _) if *a == axis));
+                    match same {
+                        Some(Elem::Trans(_, w)) => *w = w.add(&v),
+                        _ => out.push(Elem::Trans(axis, v)),
+                    }
+                }
+                rot => {
+                    drop_zero_translations(&mut out, run);
+                    out.push(rot);
+                    run = out.len();
+                }
+            }
+        }
+        drop_zero_translations(&mut out, run);
+        out
+    }
+}
+
+/// `elems[from..]` without translations by zero.
+fn drop_zero_translations(elems: &mut Vec<Elem>, from: usize) {
+    let mut i = from;
+    while i < elems.len() {
+        if matches!(&elems[i], Elem::Trans(_, v) if v.is_zero()) {
+            elems.remove(i);
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// The motion of a joint: about (revolute) or along (prismatic) an axis of the current

@@ -140,12 +140,13 @@ impl Urdf {
                 ));
             }
             if links.is_empty() {
-                base_elems = std::mem::take(&mut fixed);
+                base_elems = Elem::merge_translations(std::mem::take(&mut fixed));
             }
             let mut before = std::mem::take(&mut fixed);
             before.extend(origin);
             let (pre, axis, sign, post) = b.axis(k, j);
             before.extend(pre);
+            let before = Elem::merge_translations(before);
             links.push(Link {
                 name: j.name.clone(),
                 before,
@@ -173,7 +174,7 @@ impl Urdf {
             params,
             base: base_elems,
             links,
-            tool: fixed,
+            tool: Elem::merge_translations(fixed),
             task: None,
             scalar: Scalar::F64,
             description: format!("URDF `{}`, `{base}` → `{tip}`", self.label),
@@ -599,6 +600,30 @@ mod tests {
         assert_eq!(fmt_rat(&snap_to_twelfths(1.5708, 1e-4).unwrap().0), "0.5");
         assert!(snap_to_twelfths(1.5708, 0.0).is_none());
         assert!(snap_to_twelfths(1.6, 1e-4).is_none());
+    }
+
+    /// Fixed joints in a row (a Kinova j2n6s300's wrist) read as one translation.
+    #[test]
+    fn fixed_joints_in_a_row_are_one_translation() {
+        let src = r#"<robot name="r">
+  <link name="a"/><link name="b"/><link name="c"/><link name="d"/><link name="e"/><link name="f"/>
+  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="f1" type="fixed"><parent link="b"/><child link="c"/><origin xyz="0.042825 0 0"/></joint>
+  <joint name="f2" type="fixed"><parent link="c"/><child link="d"/><origin xyz="0.025875 0 0.5"/></joint>
+  <joint name="f3" type="fixed"><parent link="d"/><child link="e"/><origin xyz="0.0385 0 -0.5"/></joint>
+  <joint name="j2" type="revolute"><parent link="e"/><child link="f"/>
+    <origin xyz="0 0 0" rpy="0 1.5707963267948966 0"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"#;
+        let chain = crate::front::urdf::Urdf::parse(src, "r.urdf")
+            .unwrap()
+            .chain(&Selection::default())
+            .unwrap();
+        let text = chain.to_string();
+        assert!(
+            text.contains("link 2: Tx(0.1072) Ry(pi/2) Rz(q2)"),
+            "{text}"
+        );
     }
 
     /// A huge component must not overflow the norm: `1e300 0 1` is x, not z.
