@@ -38,11 +38,15 @@ pub struct UrdfArgs {
     /// decimal as written).
     #[arg(long)]
     pub snap: Option<f64>,
+    /// URDF: name every length of the chain (`d1`, `a2`…, listed with where the file
+    /// writes them in `show --what model`) and keep the names in every formula.
+    #[arg(long)]
+    pub symbolic: bool,
 }
 
 impl UrdfArgs {
     fn given(&self) -> bool {
-        self.base.is_some() || self.tip.is_some() || self.snap.is_some()
+        self.base.is_some() || self.tip.is_some() || self.snap.is_some() || self.symbolic
     }
 }
 
@@ -55,7 +59,7 @@ pub fn load(arg: &str, urdf: &UrdfArgs) -> Result<(Chain, Options), CliError> {
     }
     if urdf.given() {
         return Err(CliError::Usage(
-            "--base, --tip and --snap select the chain of a .urdf file; a TOML robot says them in the file"
+            "--base, --tip, --snap and --symbolic select the chain of a .urdf file; a TOML robot says them in the file (`params = \"auto\"` for --symbolic)"
                 .into(),
         ));
     }
@@ -95,6 +99,7 @@ pub fn urdf_chain(urdf: &Urdf, args: &UrdfArgs) -> Result<Chain, CliError> {
         tip: args.tip.clone(),
         snap: args.snap.unwrap_or(DEFAULT_SNAP),
         params: Vec::new(),
+        symbolic: args.symbolic,
     };
     urdf.chain(&selection).map_err(|e| {
         // Name the option an error is about (`--tip`), after the file's line.

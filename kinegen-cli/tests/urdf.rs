@@ -127,9 +127,60 @@ fn several_leaves_and_unknown_links_exit_2_with_the_line() {
     );
     let e = fails(&["show", "ur5", "--tip", "tool0"]);
     assert!(
-        e.contains("--base, --tip and --snap select the chain of a .urdf file"),
+        e.contains("--base, --tip, --snap and --symbolic select the chain of a .urdf file"),
         "{e}"
     );
+    let e = fails(&["show", "ur5", "--symbolic"]);
+    assert!(e.contains("`params = \"auto\"` for --symbolic"), "{e}");
+}
+
+/// `--symbolic`: the UR5's det in the data sheet's names, each listed with its line.
+#[test]
+fn symbolic_names_every_length() {
+    let ur5 = urdf("ur5.urdf");
+    let det = stdout(&[
+        "show",
+        &ur5,
+        "--base",
+        "base_link",
+        "--tip",
+        "tool0",
+        "--symbolic",
+        "--what",
+        "det",
+    ]);
+    assert!(
+        det.contains(
+            "det J = a2*a3*sin(q3)*sin(q5)*(a2*cos(q2) + a3*cos(q2+q3) - d5*sin(q2+q3+q4))"
+        ),
+        "{det}"
+    );
+    let model = stdout(&[
+        "show",
+        &ur5,
+        "--base",
+        "base_link",
+        "--tip",
+        "tool0",
+        "--symbolic",
+        "--what",
+        "model",
+    ]);
+    assert!(
+        model.contains("| a2 | -0.425 | `elbow_joint.origin.x`, ")
+            && model.contains("ur5.urdf:57 |"),
+        "{model}"
+    );
+    // A TOML file says it with `params = "auto"`.
+    let toml = temp_urdf(
+        "mh5.toml",
+        &format!(
+            "urdf = {:?}\nparams = \"auto\"\n",
+            urdf("yaskawaMotomanMH5.urdf")
+        ),
+    );
+    let det = stdout(&["show", &toml, "--what", "det"]);
+    assert!(det.contains("det J = a2*sin(q5)*("), "{det}");
 }
 
 #[test]

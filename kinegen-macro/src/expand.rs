@@ -31,6 +31,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         spans,
         shape_errors,
         ik_free,
+        symbolic,
         ..
     } = input;
     let mut budget = budget;
@@ -57,6 +58,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
                     urdf: None,
                     snap: None,
                     ik_free,
+                    symbolic,
                     robot: raw,
                     budget,
                     keys,

@@ -5,7 +5,7 @@
 //!                                           // or: vis struct Name = urdf("x.urdf", base = "b", tip = "t");
 //! key: value, ...                           // name, convention, params, joints, task,
 //!                                           // base, tool, scalar, budget, ik_free (URDF:
-//!                                           // name, params, task, scalar, budget, snap,
+//!                                           // name, params (a table, or `auto`), task, scalar, budget, snap,
 //!                                           // ik_free)
 //! ```
 //! Values are token expressions (`pi/2`, `-a2`, `0.5*L1`), turned into text for
@@ -41,6 +41,8 @@ pub struct Input {
     pub snap: Option<(TokenStream, Result<f64, String>)>,
     /// `ik_free: 7`, with its tokens; `Err` with the message if it is not a joint number.
     pub ik_free: Option<(TokenStream, Result<usize, String>)>,
+    /// `params: auto` (URDF): every length of the chain named.
+    pub symbolic: bool,
     /// The entries written in the macro.
     pub robot: RawRobot,
     /// `budget: { .. }`, if written.
@@ -140,6 +142,7 @@ impl Parse for Input {
             urdf,
             snap: None,
             ik_free: None,
+            symbolic: false,
             robot: RawRobot::default(),
             budget: None,
             keys: Vec::new(),
@@ -165,6 +168,11 @@ impl Parse for Input {
                     });
                 r.spans.insert(Path::root().key("snap"), entry.tokens());
                 input.snap = Some((entry.tokens(), value));
+                continue;
+            }
+            if key == "params" && r.urdf && expr_text(&entry.value).trim() == "auto" {
+                r.spans.insert(Path::root().key("params"), entry.tokens());
+                input.symbolic = true;
                 continue;
             }
             if key == "ik_free" {

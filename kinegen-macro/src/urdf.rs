@@ -40,6 +40,7 @@ pub fn expand(input: Input) -> syn::Result<TokenStream> {
         tip: call.tip.as_ref().map(LitStr::value),
         snap: None,
         params: input.robot.params.clone(),
+        symbolic: input.symbolic,
         task: input.robot.task.clone(),
         scalar: input.robot.scalar.clone(),
     };
@@ -126,7 +127,10 @@ pub fn expand_toml(from: FromToml, input: Input) -> syn::Result<TokenStream> {
     for key in &input.keys {
         match key.as_str() {
             "name" => options.name = input.robot.name.clone(),
-            "params" => options.params = input.robot.params.clone(),
+            "params" => {
+                options.params = input.robot.params.clone();
+                options.symbolic = input.symbolic;
+            }
             "task" => options.task = input.robot.task.clone(),
             "scalar" => options.scalar = input.robot.scalar.clone(),
             "budget" | "ik_free" => {}

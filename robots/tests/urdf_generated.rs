@@ -223,6 +223,11 @@ kinegen::kinematics! {
 kinegen::kinematics! {
     struct MotomanMh5 = urdf("urdf/yaskawaMotomanMH5.urdf");
 }
+kinegen::kinematics! {
+    /// Every length named (`d1`, `a1`…), fields with the file's values.
+    struct MotomanMh5Named = urdf("urdf/yaskawaMotomanMH5.urdf");
+    params: auto,
+}
 
 /// The bounds the generated type states for its snaps, read back from the chain.
 fn snap_bounds(file: &str, base: Option<&str>, tip: Option<&str>) -> (f64, f64) {
@@ -274,6 +279,9 @@ fn snapped_urdf_robots_stay_within_their_stated_bounds() {
     let mh5 = reference_chain("urdf/yaskawaMotomanMH5.urdf", "base_link", "link_t");
     let b = snap_bounds("urdf/yaskawaMotomanMH5.urdf", None, None);
     check(&MotomanMh5, &mh5, 1e-9, b, &[]);
+    let named = MotomanMh5Named::default();
+    assert_eq!((named.a2, named.d4, named.d4_2), (0.31, 0.0715, 0.2335));
+    check(&named, &mh5, 1e-9, b, &[]);
 }
 
 /// The UR5 and Panda from their URDFs are the DH robots: the UR5's base_link is the DH

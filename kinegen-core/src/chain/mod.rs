@@ -17,6 +17,7 @@
 //! ```
 
 pub mod dh;
+pub mod named_lengths;
 pub mod urdf;
 
 use std::fmt;

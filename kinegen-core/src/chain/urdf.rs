@@ -29,6 +29,7 @@ use std::f64::consts::PI;
 
 use num_traits::{Signed, Zero};
 
+use crate::chain::named_lengths;
 use crate::chain::{Axis, AxisAt, Chain, Elem, Link, Motion, Snap};
 use crate::front::located::LoadError;
 use crate::front::urdf::{Joint, JointType, Number, Urdf};
@@ -51,6 +52,9 @@ pub struct Selection {
     pub snap: f64,
     /// Named lengths `(name, "joint.origin.x|y|z")`: symbolic, fields of the type.
     pub params: Vec<(String, String)>,
+    /// Name every other non-zero length too (`d1`, `a2`…: [`named_lengths`]), so every
+    /// formula is in symbols.
+    pub symbolic: bool,
 }
 
 impl Default for Selection {
@@ -60,6 +64,7 @@ impl Default for Selection {
             tip: None,
             snap: DEFAULT_SNAP,
             params: Vec::new(),
+            symbolic: false,
         }
     }
 }
@@ -97,7 +102,13 @@ impl Urdf {
             ));
         }
         let (base, tip, joints) = self.path(sel.base.as_deref(), sel.tip.as_deref())?;
-        let (names, params) = self.named_lengths(sel, &joints)?;
+        let auto = match sel.symbolic {
+            true => named_lengths::name_lengths(&joints, &sel.params, sel.snap),
+            false => Vec::new(),
+        };
+        let mut wanted = sel.params.clone();
+        wanted.extend(auto.iter().map(|n| (n.name.clone(), n.entry.clone())));
+        let (names, params) = self.named_lengths(&wanted, &joints)?;
         let mut b = Builder {
             tol: sel.snap,
             names,
@@ -178,9 +189,42 @@ impl Urdf {
             task: None,
             scalar: Scalar::F64,
             description: format!("URDF `{}`, `{base}` → `{tip}`", self.label),
-            summary: summary(&joints, sel.snap),
+            summary: summary(&joints, sel.snap, &self.named_summary(&wanted, &joints)),
             snaps,
         })
+    }
+
+    /// The named lengths as a table: name, the file's value, and where it is written.
+    fn named_summary(&self, wanted: &[(String, String)], joints: &[&Joint]) -> Vec<String> {
+        let mut rows = Vec::new();
+        for (name, entry) in wanted {
+            let Some((joint, coord)) = entry.rsplit_once(".origin.") else {
+                continue;
+            };
+            let (Some(j), Some(i)) = (
+                joints.iter().find(|j| j.name == joint),
+                XYZ.iter().position(|x| *x == coord),
+            ) else {
+                continue;
+            };
+            rows.push(format!(
+                "| {name} | {} | `{entry}`, {}:{} |",
+                j.xyz[i].text, self.label, j.origin_line
+            ));
+        }
+        if rows.is_empty() {
+            return rows;
+        }
+        let mut s = vec![
+            String::new(),
+            "Named lengths (fields of the generated type; defaults as the file writes them):"
+                .into(),
+            String::new(),
+            "| name | value | written at |".into(),
+            "|---|---|---|".into(),
+        ];
+        s.extend(rows);
+        s
     }
 
     fn error(&self, line: usize, path: Path, message: String) -> LoadError {
@@ -191,13 +235,13 @@ impl Urdf {
     #[allow(clippy::type_complexity)]
     fn named_lengths(
         &self,
-        sel: &Selection,
+        wanted: &[(String, String)],
         joints: &[&Joint],
     ) -> Result<(BTreeMap<(usize, usize), String>, Vec<Param>), LoadError> {
         let mut names = BTreeMap::new();
         let mut params = Vec::new();
         let mut errors = Vec::new();
-        for (name, entry) in &sel.params {
+        for (name, entry) in wanted {
             let path = Path::root().key("params").key(name);
             let mut fail = |msg: String| errors.push(self.error(self.line, path.clone(), msg));
             if let Some(problem) = param_name_problem(name) {
@@ -544,7 +588,7 @@ fn bounds(pending: Vec<Pending>, joints: &[&Joint]) -> Vec<Snap> {
 }
 
 /// The chain's joints as written, for the rustdoc.
-fn summary(joints: &[&Joint], snap: f64) -> Vec<String> {
+fn summary(joints: &[&Joint], snap: f64, named: &[String]) -> Vec<String> {
     let mut s = vec![
         format!(
             "Joints base to tip (`q` follows the movable ones); numbers within {snap:e} of an exact value \
@@ -578,6 +622,7 @@ fn summary(joints: &[&Joint], snap: f64) -> Vec<String> {
             text(&j.rpy)
         ));
     }
+    s.extend(named.iter().cloned());
     s
 }
 

@@ -511,7 +511,10 @@ impl Reader<'_> {
                         ),
                     ),
                 },
-                "params" => o.params = self.entries(value, &p).unwrap_or_default(),
+                "params" => match value.get_ref() {
+                    Node::Str(s) if s == "auto" => o.symbolic = true,
+                    _ => o.params = self.entries(value, &p).unwrap_or_default(),
+                },
                 "task" => {
                     o.task = self.value(value, &p).map(|v| match v {
                         RawValue::List(items) => items,

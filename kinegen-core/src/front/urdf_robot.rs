@@ -47,6 +47,8 @@ pub struct UrdfOptions {
     pub snap: Option<f64>,
     /// Named lengths: `(name, "joint.origin.z")`.
     pub params: Vec<(String, RawValue)>,
+    /// `params: auto` / `params = "auto"`: every length named ([`Selection::symbolic`]).
+    pub symbolic: bool,
     /// Task rows.
     pub task: Option<Vec<RawValue>>,
     /// `f64` / `f32`.
@@ -90,6 +92,7 @@ pub fn chain(urdf: &Urdf, o: &UrdfOptions) -> Result<Chain, Vec<Problem>> {
         tip: o.tip.clone(),
         snap: o.snap.unwrap_or(DEFAULT_SNAP),
         params,
+        symbolic: o.symbolic,
     };
     let built = urdf.chain(&selection).map_err(|e| {
         problems.extend(e.errors.into_iter().map(|e| match e.path.0.first() {
