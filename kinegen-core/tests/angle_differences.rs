@@ -8,6 +8,7 @@
 //! by π instead.
 
 use kinegen_core::chain::urdf::Selection;
+use kinegen_core::emit::code::OpCount;
 use kinegen_core::front::urdf::Urdf;
 use kinegen_core::{derive, generate, numeric, Chain, ItemHeader, Stats};
 use nalgebra::Matrix6;
@@ -66,8 +67,14 @@ fn det_text_checked(chain: &Chain) -> String {
     det.text.clone()
 }
 
+/// `add+mul (neg)` of one output.
+fn counts(o: &OpCount) -> String {
+    format!("{} ({} neg)", o.add + o.mul + o.div, o.neg)
+}
+
 #[test]
 fn urdf_joints_against_their_axes_read_as_angle_differences() {
+    let mut table = String::from("arm | fk | jacobian | det | det J\n");
     for (name, tip, factor) in [
         (
             "fanucLRMate200ib.urdf",
@@ -86,24 +93,43 @@ fn urdf_joints_against_their_axes_read_as_angle_differences() {
         let text = det_text_checked(&chain);
         assert!(text.contains(factor), "{name}: det J = {text}");
         assert!(!text.contains("q2+q3"), "{name}: det J = {text}");
-        // Same sense throughout: no more operations than the file turned positive.
+        let ours = stats(&chain);
+        let row = |label: &str, s: &Stats, det: &str| {
+            format!(
+                "{label} | {} | {} | {} | {det}\n",
+                counts(&s.fk),
+                counts(&s.jacobian),
+                counts(s.det.as_ref().unwrap())
+            )
+        };
+        table.push_str(&row(name, &ours, &text));
+        // The Kinova file turns its frames by π instead: it has no twin by axis signs.
+        if src == positive_axes(&src) {
+            continue;
+        }
+        // The same arm with every axis turned positive: the same adds and
+        // multiplications (negations may differ: the twin is another function of q).
         let turned = chain_of(&positive_axes(&src), name, tip);
-        let (ours, positive) = (stats(&chain), stats(&turned));
-        eprintln!(
-            "{name}: det {:?} vs {:?} (axes turned positive)",
-            ours.det.map(|o| o.total()),
-            positive.det.map(|o| o.total())
-        );
-        if src != positive_axes(&src) {
-            let _ = det_text_checked(&turned);
+        let twin = stats(&turned);
+        let twin_text = det_text_checked(&turned);
+        table.push_str(&row(&format!("{name}, axes positive"), &twin, &twin_text));
+        let work = |o: &OpCount| o.add + o.mul + o.div;
+        for (what, a, b) in [
+            ("fk", &ours.fk, &twin.fk),
+            ("jacobian", &ours.jacobian, &twin.jacobian),
+            (
+                "det",
+                ours.det.as_ref().unwrap(),
+                twin.det.as_ref().unwrap(),
+            ),
+        ] {
             assert!(
-                ours.det.unwrap().total() <= positive.det.unwrap().total(),
-                "{name}: det {:?} operations against {:?} with positive axes",
-                ours.det,
-                positive.det
+                work(a) <= work(b),
+                "{name}: {what} {a:?} against {b:?} with positive axes"
             );
         }
     }
+    insta::assert_snapshot!("reversed_axes_counts", table);
 }
 
 #[test]
