@@ -224,8 +224,10 @@ impl<const K: usize> From<ThroughVias<K>> for ThroughViasPoints<K> {
         // (cubics return their boundary values exactly).
         let points = core::array::from_fn(|i| match path.segment(i) {
             Some(c) => c.position(0.0),
-            None => path
-                .segment(i - 1)
+            // (`checked_sub`: a path with no segment has no point 0 to end either.)
+            None => i
+                .checked_sub(1)
+                .and_then(|p| path.segment(p))
                 .map_or(0.0, |c| c.position(c.duration())),
         });
         ThroughViasPoints {
