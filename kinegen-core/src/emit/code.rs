@@ -6,7 +6,7 @@
 //! the joint angles of an f64 robot in one `sin_cos_n` call (SIMD lanes), any other
 //! angle (and every angle of an f32 robot) with one `sin_cos` each; intermediates
 //! whose value is the sine or cosine of a sum or difference of joint angles are named
-//! after it (`c23`, `c2m3`: [`AngleName`](crate::emit::angle_names::AngleName)).
+//! after it (`c23`, `c2m3`: [`AngleName`]).
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
