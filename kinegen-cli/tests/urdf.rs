@@ -138,34 +138,27 @@ fn several_leaves_and_unknown_links_exit_2_with_the_line() {
 #[test]
 fn symbolic_names_every_length() {
     let ur5 = urdf("ur5.urdf");
-    let det = stdout(&[
-        "show",
-        &ur5,
-        "--base",
-        "base_link",
-        "--tip",
-        "tool0",
-        "--symbolic",
-        "--what",
-        "det",
-    ]);
+    let show = |what: &str| {
+        stdout(&[
+            "show",
+            &ur5,
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--symbolic",
+            "--what",
+            what,
+        ])
+    };
+    let det = show("det");
     assert!(
         det.contains(
             "det J = a2*a3*sin(q3)*sin(q5)*(a2*cos(q2) + a3*cos(q2+q3) - d5*sin(q2+q3+q4))"
         ),
         "{det}"
     );
-    let model = stdout(&[
-        "show",
-        &ur5,
-        "--base",
-        "base_link",
-        "--tip",
-        "tool0",
-        "--symbolic",
-        "--what",
-        "model",
-    ]);
+    let model = show("model");
     assert!(
         model.contains("| a2 | -0.425 | `elbow_joint.origin.x`, ")
             && model.contains("ur5.urdf:57 |"),

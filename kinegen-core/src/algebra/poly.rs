@@ -148,6 +148,11 @@ impl Poly {
         self.terms.iter()
     }
 
+    /// The coefficient of one monomial (`None` where it has none).
+    pub fn coefficient(&self, m: &Mono) -> Option<&Rat> {
+        self.terms.get(m)
+    }
+
     /// Build from terms (merging equal monomials; monomials must already be reduced).
     pub fn from_terms(terms: impl IntoIterator<Item = (Mono, Rat)>) -> Self {
         let mut p = Poly::zero();

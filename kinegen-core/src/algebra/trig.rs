@@ -108,7 +108,7 @@ pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTer
                 (a, s, e)
             })
             .collect();
-        let mut best: Option<(usize, TrigTerm, Poly)> = None;
+        let mut best: Option<(isize, TrigTerm, Poly)> = None;
         for grouping in groupings(&singles, &ang) {
             let mut nf = Poly::constant(Rat::one());
             for t in &grouping {
@@ -122,8 +122,17 @@ pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTer
             let Some(k) = k else { continue };
             let c = &coef / &k;
             let term_nf = ring.mul(&nf, &Poly::from_terms([(other.clone(), c.clone())]));
-            let next = rest.sub(&term_nf);
-            let gain = rest.len().saturating_sub(next.len());
+            // Terms of `rest` the subtraction removes, less those it adds: looked up
+            // term by term, not by subtracting (`rest` may have thousands of terms and a
+            // run of six joints has 243 groupings).
+            let gain: isize = term_nf
+                .terms()
+                .map(|(m, c)| match rest.coefficient(m) {
+                    Some(r) if r == c => 1,
+                    Some(_) => 0,
+                    None => -1,
+                })
+                .sum();
             if gain > 0 && best.as_ref().is_none_or(|(g, _, _)| gain > *g) {
                 best = Some((
                     gain,
@@ -132,13 +141,13 @@ pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTer
                         rest: other.clone(),
                         trig: grouping,
                     },
-                    next,
+                    term_nf,
                 ));
             }
         }
-        let (_, term, next) = best?;
+        let (_, term, term_nf) = best?;
         out.push(term);
-        rest = next;
+        rest = rest.sub(&term_nf);
     }
     // Read in joint order: a2*cos(q2) + a3*cos(q2+q3) + d5*sin(q2+q3+q4).
     out.sort_by(|a, b| {
