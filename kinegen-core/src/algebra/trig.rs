@@ -177,6 +177,9 @@ pub fn rewrite(ring: &Ring, angles: &[AngleDef], p: &Poly) -> Option<Vec<TrigTer
 /// Most groupings tried for one term (a term with six joints' variables has 243).
 const MAX_GROUPINGS: usize = 1024;
 
+/// Longest run whose sign patterns are tried (2^(k−1) of them).
+const MAX_SIGNED_RUN: usize = 6;
+
 /// Ways to group a term's trigonometric variables into signed sums over consecutive
 /// joints: every plain grouping first, then those with differences.
 fn groupings(singles: &[(usize, bool, u32)], ang: &Angles) -> Vec<Vec<SumTrig>> {
@@ -200,37 +203,43 @@ fn groupings(singles: &[(usize, bool, u32)], ang: &Angles) -> Vec<Vec<SumTrig>> 
     if n == 0 {
         return vec![fixed];
     }
-    // All ways to cut the sorted list into runs of consecutive joints.
+    // Ways to cut the sorted list into runs of consecutive joints: it must be cut
+    // between joints that are not consecutive, and may be between those that are (the
+    // first ten such places: a bounded number of cuts whatever the term).
+    let consecutive =
+        |i: usize| ang.joint_of[runnable[i].0] == ang.joint_of[runnable[i - 1].0].map(|j| j + 1);
+    let free: Vec<usize> = (1..n).filter(|&i| consecutive(i)).collect();
     let mut cuts: Vec<Vec<&[(usize, bool)]>> = Vec::new();
-    for mask in 0u32..(1 << (n - 1)) {
-        // bit i set: cut between i and i+1
+    for mask in 0u32..(1 << free.len().min(10)) {
         let mut runs = Vec::new();
         let mut begin = 0;
-        let mut ok = true;
         for i in 1..n {
-            let cut = mask & (1 << (i - 1)) != 0;
-            let consecutive =
-                ang.joint_of[runnable[i].0] == ang.joint_of[runnable[i - 1].0].map(|j| j + 1);
+            let cut = match free.iter().position(|&f| f == i) {
+                Some(j) => j < 10 && mask & (1 << j) != 0,
+                None => true,
+            };
             if cut {
                 runs.push(&runnable[begin..i]);
                 begin = i;
-            } else if !consecutive {
-                ok = false;
-                break;
             }
         }
-        if ok {
-            runs.push(&runnable[begin..]);
-            cuts.push(runs);
-        }
+        runs.push(&runnable[begin..]);
+        cuts.push(runs);
     }
-    // Each run of k angles has 2^(k−1) sign patterns (bit j: angle j+1 subtracted);
-    // pattern 0 everywhere is the plain sum.
+    // Each run of k ≤ MAX_SIGNED_RUN angles has 2^(k−1) sign patterns (bit j: angle
+    // j+1 subtracted), a longer run its plain sum only; pattern 0 everywhere is the
+    // plain sum.
     let mut results = Vec::new();
     for with_differences in [false, true] {
         for runs in &cuts {
-            let sizes: Vec<u32> = runs.iter().map(|r| 1 << (r.len() - 1)).collect();
-            let total: u32 = sizes.iter().product();
+            let sizes: Vec<u64> = runs
+                .iter()
+                .map(|r| match r.len() <= MAX_SIGNED_RUN {
+                    true => 1 << (r.len() - 1),
+                    false => 1,
+                })
+                .collect();
+            let total: u64 = sizes.iter().fold(1, |t, &s| t.saturating_mul(s));
             let patterns = if with_differences { 1..total } else { 0..1 };
             for mut code in patterns {
                 let mut groups: Vec<SumTrig> = fixed.clone();
@@ -250,14 +259,21 @@ fn groupings(singles: &[(usize, bool, u32)], ang: &Angles) -> Vec<Vec<SumTrig>> 
 
 /// A run's sine or cosine: the monomial's parity of sines decides which; `minus` has
 /// bit j set where angle j + 1 of the run is subtracted.
-fn close(run: &[(usize, bool)], minus: u32) -> SumTrig {
+fn close(run: &[(usize, bool)], minus: u64) -> SumTrig {
     let sines = run.iter().filter(|(_, s)| *s).count();
+    let subtracted = |j: usize| {
+        j > 0
+            && u32::try_from(j - 1)
+                .ok()
+                .and_then(|b| minus.checked_shr(b))
+                .is_some_and(|m| m & 1 != 0)
+    };
     SumTrig {
         sin: sines % 2 == 1,
         angles: run
             .iter()
             .enumerate()
-            .map(|(j, &(a, _))| (a, j > 0 && minus & (1 << (j - 1)) != 0))
+            .map(|(j, &(a, _))| (a, subtracted(j)))
             .collect(),
     }
 }
@@ -410,4 +426,61 @@ pub fn latex(ring: &Ring, angles: &[AngleDef], terms: &[TrigTerm]) -> String {
         s.push('0');
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::value::Value;
+
+    /// `n` joint angles, with their ring.
+    fn joints(n: usize) -> (Ring, Vec<AngleDef>) {
+        let mut ring = Ring::new();
+        let defs = (0..n)
+            .map(|i| AngleDef {
+                source: AngleSource::Joint {
+                    joint: i,
+                    sign: 1,
+                    offset: Value::zero(),
+                },
+                vars: ring.angle(i, &format!("{}", i + 1)),
+                suffix: format!("{}", i + 1),
+            })
+            .collect();
+        (ring, defs)
+    }
+
+    #[test]
+    fn differences_are_read_back() {
+        let (ring, defs) = joints(3);
+        let (s2, c2) = defs[1].vars;
+        let (s3, c3) = defs[2].vars;
+        let v = |x| Poly::var(x);
+        // 2·(c2 c3 + s2 s3) + 3·(s2 c3 − c2 s3) = 2 cos(q2−q3) + 3 sin(q2−q3)
+        let p = ring
+            .mul(&v(c2), &v(c3))
+            .add(&ring.mul(&v(s2), &v(s3)))
+            .scale(&Rat::from_integer(2.into()))
+            .add(
+                &ring
+                    .mul(&v(s2), &v(c3))
+                    .sub(&ring.mul(&v(c2), &v(s3)))
+                    .scale(&Rat::from_integer(3.into())),
+            );
+        let terms = rewrite(&ring, &defs, &p).unwrap();
+        assert_eq!(text(&ring, &defs, &terms), "2*cos(q2-q3) + 3*sin(q2-q3)");
+        // A plain sum stays a sum.
+        let sum = ring.mul(&v(c2), &v(c3)).sub(&ring.mul(&v(s2), &v(s3)));
+        let terms = rewrite(&ring, &defs, &sum).unwrap();
+        assert_eq!(text(&ring, &defs, &terms), "cos(q2+q3)");
+    }
+
+    /// A term with forty joints' variables: a bounded number of groupings, at once.
+    #[test]
+    fn groupings_are_bounded() {
+        let (_, defs) = joints(40);
+        let singles: Vec<(usize, bool, u32)> = (0..40).map(|i| (i, i % 2 == 0, 1)).collect();
+        let g = groupings(&singles, &Angles::new(&defs));
+        assert!(!g.is_empty() && g.len() <= MAX_GROUPINGS, "{}", g.len());
+    }
 }
