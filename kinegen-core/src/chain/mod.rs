@@ -103,6 +103,16 @@ impl Elem {
     }
 }
 
+/// `u / |u|`, scaled by the largest component first: squaring `1e300` overflows, and
+/// the axis `1e300 0 1` came out as `0 0 0` — then "snapped" to z (found by the URDF
+/// mutation test). The URDF builder's axes and its named lengths' directions.
+pub(crate) fn unit(v: &[f64; 3]) -> [f64; 3] {
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let w = v.map(|x| x / m);
+    let n = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    w.map(|x| x / n)
+}
+
 /// `elems[from..]` without translations by zero.
 fn drop_zero_translations(elems: &mut Vec<Elem>, from: usize) {
     let mut i = from;

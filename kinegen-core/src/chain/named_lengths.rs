@@ -30,6 +30,7 @@ use std::collections::BTreeSet;
 
 use num_traits::Zero;
 
+use crate::chain::unit;
 use crate::front::urdf::{Joint, JointType};
 use crate::model::validate::param_name_problem;
 
@@ -91,22 +92,20 @@ pub fn name_lengths(joints: &[&Joint], taken: &[(String, String)], snap: f64) ->
             (true, _) => None,
             (false, true) => previous,
             // The joint's axis as written is in its own frame, where the next origin is.
-            (false, false) => Some(unit(&j.axis)),
+            (false, false) => Some(axis_as_written(j)),
         };
     }
     out
 }
 
-/// The axis as written, normalised.
-fn unit(axis: &[crate::front::urdf::Number; 3]) -> [f64; 3] {
-    let a = axis.iter().map(|n| n.to_f64()).collect::<Vec<_>>();
-    let norm = a.iter().map(|x| x * x).sum::<f64>().sqrt();
-    [a[0] / norm, a[1] / norm, a[2] / norm]
+/// The joint's axis as written, normalised (in the joint's own frame).
+fn axis_as_written(j: &Joint) -> [f64; 3] {
+    unit(&j.axis.clone().map(|n| n.to_f64()))
 }
 
 /// The joint's axis (unit) in its parent's frame: turned by `Rz(yaw) Ry(pitch) Rx(roll)`.
 fn axis_in_parent(j: &Joint) -> [f64; 3] {
-    let mut v = unit(&j.axis);
+    let mut v = axis_as_written(j);
     let [roll, pitch, yaw] = [j.rpy[0].to_f64(), j.rpy[1].to_f64(), j.rpy[2].to_f64()];
     // Rx, then Ry, then Rz (applied to the vector in that order).
     let turn = |v: [f64; 3], axis: usize, t: f64| {

@@ -30,7 +30,7 @@ use std::f64::consts::PI;
 use num_traits::{Signed, Zero};
 
 use crate::chain::named_lengths;
-use crate::chain::{Axis, AxisAt, Chain, Elem, Link, Motion, Snap};
+use crate::chain::{unit, Axis, AxisAt, Chain, Elem, Link, Motion, Snap};
 use crate::front::located::LoadError;
 use crate::front::urdf::{Joint, JointType, Number, Urdf};
 use crate::model::raw::Path;
@@ -109,6 +109,7 @@ impl Urdf {
         let mut wanted = sel.params.clone();
         wanted.extend(auto.iter().map(|n| (n.name.clone(), n.entry.clone())));
         let (names, params) = self.named_lengths(&wanted, &joints)?;
+        let named_rows = self.named_summary(&names, &joints);
         let mut b = Builder {
             tol: sel.snap,
             names,
@@ -189,27 +190,24 @@ impl Urdf {
             task: None,
             scalar: Scalar::F64,
             description: format!("URDF `{}`, `{base}` → `{tip}`", self.label),
-            summary: summary(&joints, sel.snap, &self.named_summary(&wanted, &joints)),
+            summary: summary(&joints, sel.snap, &named_rows),
             snaps,
         })
     }
 
-    /// The named lengths as a table: name, the file's value, and where it is written.
-    fn named_summary(&self, wanted: &[(String, String)], joints: &[&Joint]) -> Vec<String> {
+    /// The named lengths (`(joint on the path, coordinate) → name`, base to tip) as a
+    /// table: name, the file's value, and where it is written.
+    fn named_summary(
+        &self,
+        names: &BTreeMap<(usize, usize), String>,
+        joints: &[&Joint],
+    ) -> Vec<String> {
         let mut rows = Vec::new();
-        for (name, entry) in wanted {
-            let Some((joint, coord)) = entry.rsplit_once(".origin.") else {
-                continue;
-            };
-            let (Some(j), Some(i)) = (
-                joints.iter().find(|j| j.name == joint),
-                XYZ.iter().position(|x| *x == coord),
-            ) else {
-                continue;
-            };
+        for (&(k, i), name) in names {
+            let j = joints[k];
             rows.push(format!(
-                "| {name} | {} | `{entry}`, {}:{} |",
-                j.xyz[i].text, self.label, j.origin_line
+                "| {name} | {} | `{}.origin.{}`, {}:{} |",
+                j.xyz[i].text, j.name, XYZ[i], self.label, j.origin_line
             ));
         }
         if rows.is_empty() {
@@ -470,16 +468,6 @@ impl Builder {
         }
         (pre, Axis::Z, 1, post)
     }
-}
-
-/// `u / |u|`, scaled by the largest component first: squaring `1e300` overflows, and
-/// the axis `1e300 0 1` came out as `0 0 0` — then "snapped" to z (found by the URDF
-/// mutation test).
-fn unit(v: &[f64; 3]) -> [f64; 3] {
-    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let w = v.map(|x| x / m);
-    let n = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
-    w.map(|x| x / n)
 }
 
 /// `(t, |x − tπ|)` for the multiple `t` of 1/12 with `tπ` within `tol` of `x`.
