@@ -63,17 +63,26 @@ impl Angles {
     }
 }
 
+/// `(sin, cos)` of `x ± y` from those of `x` and `y` (`minus` for `x − y`).
+pub fn add_angle(
+    ring: &Ring,
+    (s, c): (&Poly, &Poly),
+    (sy, cy): (&Poly, &Poly),
+    minus: bool,
+) -> (Poly, Poly) {
+    // sin(−y) = −sin y, cos(−y) = cos y.
+    let sy = if minus { sy.neg() } else { sy.clone() };
+    let ns = ring.mul(s, cy).add(&ring.mul(c, &sy));
+    let nc = ring.mul(c, cy).sub(&ring.mul(s, &sy));
+    (ns, nc)
+}
+
 /// The normal form of `sin`/`cos` of a sum of the chain's angles.
 pub fn sum_nf(ring: &Ring, angles: &[AngleDef], t: &SumTrig) -> Poly {
     let (mut s, mut c) = (Poly::zero(), Poly::one());
     for &(a, minus) in &t.angles {
         let (sa, ca) = (Poly::var(angles[a].vars.0), Poly::var(angles[a].vars.1));
-        // sin(−x) = −sin x, cos(−x) = cos x.
-        let sa = if minus { sa.neg() } else { sa };
-        let ns = ring.mul(&s, &ca).add(&ring.mul(&c, &sa));
-        let nc = ring.mul(&c, &ca).sub(&ring.mul(&s, &sa));
-        s = ns;
-        c = nc;
+        (s, c) = add_angle(ring, (&s, &c), (&sa, &ca), minus);
     }
     if t.sin {
         s

@@ -13,6 +13,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use crate::algebra::angles::AngleSource;
 use crate::algebra::graph::{Graph, Id, Node};
 use crate::algebra::poly::{Poly, VarKind};
+use crate::algebra::trig;
 use crate::chain::Chain;
 use crate::emit::angle_names::AngleName;
 use crate::kinematics::frames::SymbolicChain;
@@ -470,14 +471,12 @@ pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Pol
                 if s.len() >= MAX_NAMED_SUM_TERMS || !(is_plain || length <= MAX_NAMED_DIFFERENCE) {
                     continue;
                 }
-                for minus in [false, true] {
-                    if minus && length > MAX_NAMED_DIFFERENCE {
-                        continue;
-                    }
-                    // sin(−x) = −sin x, cos(−x) = cos x.
-                    let s2 = if minus { s2.neg() } else { s2.clone() };
-                    let ns = ring.mul(s, c2).add(&ring.mul(c, &s2));
-                    let nc = ring.mul(c, c2).sub(&ring.mul(s, &s2));
+                let signs: &[bool] = match length <= MAX_NAMED_DIFFERENCE {
+                    true => &[false, true],
+                    false => &[false],
+                };
+                for &minus in signs {
+                    let (ns, nc) = trig::add_angle(ring, (s, c), (s2, c2), minus);
                     let mut joints = joints.clone();
                     joints.push((k + 1, minus));
                     let label = AngleName::label(&joints, chain.dof());
