@@ -176,3 +176,78 @@ fn solution_counts_match_many_newton_starts() {
 
 /// Newton starts per pose.
 const STARTS: usize = 2000;
+
+/// The FANUC CRX-10iA/L at poses where several solutions share a value of the eigen
+/// joint (q2 = 0 with the wrist at right angles, from `ik_closed_form.rs`'s self-test,
+/// where the solver once missed them): whichever formulation the hint starts with, the
+/// generating configuration is among the exact solutions, none of them is flagged a
+/// double root (the poses are regular), and every start gives the same solutions.
+#[test]
+fn crx_shared_eigen_joint_values() {
+    use kinegen::ik::families::FORMULATIONS;
+    use kinegen::ik::subproblems::Fit;
+    use kinegen_robots::FanucCrx10iaL;
+    let robot = FanucCrx10iaL::default();
+    let g = robot.ik_geometry();
+    for q in [
+        [
+            FRAC_PI_2,
+            0.0,
+            0.0,
+            0.678_946_906_232_560_8,
+            -2.800_283_048_412_051,
+            -2.760_315_372_254_539,
+        ],
+        [
+            -0.527_229_029_656_112,
+            0.0,
+            0.579_813_191_650_912_6,
+            -3.120_396_038_672_816_5,
+            -2.976_207_655_169_290_4,
+            FRAC_PI_2,
+        ],
+        [
+            3.107_278_794_555_800_7,
+            0.0,
+            -1.448_846_604_316_554_7,
+            -0.821_505_651_765_158,
+            -0.147_260_428_000_934_86,
+            -2.401_211_812_487_998_6,
+        ],
+    ] {
+        assert!(hadamard_ratio(&g, &q) > SINGULAR, "{q:?} is regular");
+        // The generated fk's pose, as the self-test gives it (its rounding matters here).
+        let pose = Pose::from_matrix(&robot.fk(&q));
+        let mut first: Option<Vec<[f64; 6]>> = None;
+        for k in 0..FORMULATIONS.len() {
+            let mut out = Candidates::<6, 16>::default();
+            general_6r(&g, &pose, &[0.0; 6], &Hint::at(k), &mut out);
+            let exact: Vec<_> = out
+                .as_slice()
+                .iter()
+                .filter(|c| miss(&g, &c.q, &pose) <= 1e-10)
+                .collect();
+            assert!(
+                exact.iter().any(|c| gap(&c.q, &q) <= 1e-7),
+                "{q:?}, hint {k}: the generating configuration is not among {exact:?}"
+            );
+            assert!(
+                exact.iter().all(|c| c.fit != Fit::Double),
+                "{q:?}, hint {k}: a regular solution flagged a double root"
+            );
+            assert_eq!(
+                exact.len() % 2,
+                0,
+                "{q:?}, hint {k}: an odd number of solutions"
+            );
+            let qs: Vec<[f64; 6]> = exact.iter().map(|c| c.q).collect();
+            match &first {
+                None => first = Some(qs),
+                Some(f) => assert!(
+                    f.len() == qs.len() && f.iter().all(|a| qs.iter().any(|b| gap(a, b) <= 1e-7)),
+                    "{q:?}, hint {k}: {qs:?} against hint 0's {f:?}"
+                ),
+            }
+        }
+    }
+}

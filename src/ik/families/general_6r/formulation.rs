@@ -79,6 +79,15 @@ pub const FORMULATIONS: [Formulation; 12] = {
     all
 };
 
+impl Formulation {
+    /// The joint whose half-angle tangent is the eigenvalue: the third after the
+    /// eliminated one round the loop, wherever the loop is split (split after two joints,
+    /// it is the first of the three-joint side's; after three, the last).
+    pub const fn eigen_joint(&self) -> usize {
+        (self.eliminated + 3) % 6
+    }
+}
+
 /// The two sides of one formulation for one pose.
 pub(super) struct Sides {
     /// The eliminated joint's point and direction.

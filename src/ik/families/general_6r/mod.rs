@@ -36,7 +36,10 @@
 //! Special geometry makes some of them degenerate for every pose (the Jaco: ten of
 //! twelve), and special poses (joints at right angles, the tool along axis 1) all of them
 //! or nearly: the first regular form is used and remembered ([`Hint`]); where it is ill
-//! conditioned for a pose, the best conditioned form; where every form degenerates, the
+//! conditioned for a pose, the best conditioned form; where a value of its eigen joint is
+//! shared by more solutions than the null space separates (the CRX at q2 = 0, where two
+//! pairs share it: found by a split root, an odd number of solutions, or roots that give
+//! none), the forms with other eigen joints too; where every form degenerates, the
 //! solutions of the pose moved off by ±1e-4 and ±1e-3, tracked back by Newton steps.
 //! Branches within 2e-6 rad are one double root (merged, flagged singular), as is a branch
 //! whose Jacobian is singular to rounding (Hadamard's ratio below 1e-7).
@@ -55,6 +58,7 @@ use crate::ik::polish::{hadamard_ratio, polish};
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1_angle, wrap, Fit};
 use crate::math::abs;
+use core::cell::OnceCell;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use elimination::System;
 pub use formulation::{Formulation, FORMULATIONS};
@@ -96,8 +100,15 @@ pub fn general_6r<const K: usize>(
 ) {
     let mut found = Found::default();
     let reached = |q: &[f64; 6]| reaches(g, q, pose);
-    let conditioning = eliminate_and_solve(g, pose, free, hint, &mut found);
-    if conditioning < WELL_CONDITIONED || !found.as_slice().iter().any(|c| reached(&c.q)) {
+    let (conditioning, shared) = eliminate_and_solve(g, pose, free, hint, &mut found);
+    // A value of the eigen joint shared by more solutions than read that no other eigen
+    // joint separates either: the pose moved off, as for a degenerate one.
+    let unresolved =
+        shared.is_some() && !with_other_eigen_joints(g, pose, free, shared, &mut found);
+    if unresolved
+        || conditioning < WELL_CONDITIONED
+        || !found.as_slice().iter().any(|c| reached(&c.q))
+    {
         // Every form's pencil singular or nearly so for this pose (special poses: the
         // tool along axis 1, joints at right angles — the elimination loses roots there,
         // though the solutions are isolated), or no branch reaches the pose (out of reach,
@@ -233,15 +244,16 @@ fn nudged(pose: &Pose, size: f64) -> Pose {
 }
 
 /// Steps 1–6 on a formulation regular for this arm and pose (the hint's if it is well
-/// conditioned, else the best conditioned); the branches into `found`, and that pencil's
-/// pivot ratio (0: none regular, nothing found).
+/// conditioned, else the best conditioned); the branches into `found`, that pencil's
+/// pivot ratio (0: none regular, nothing found) and, where a value of its eigen joint
+/// was shared by more solutions than the back-substitution separates, that joint.
 fn eliminate_and_solve(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
     hint: &Hint,
     found: &mut Found,
-) -> f64 {
+) -> (f64, Option<usize>) {
     // The remembered formulation where it is well conditioned for this pose; else the
     // best conditioned of all (a pose near a degenerate one for some of them).
     let first = hint.get();
@@ -253,8 +265,8 @@ fn eliminate_and_solve(
         };
         if sys.ratio >= WELL_CONDITIONED {
             hint.set(k);
-            solve_with(g, pose, free, &sys, found);
-            return sys.ratio;
+            let shared = solve_with(g, pose, free, &sys, found);
+            return (sys.ratio, shared.then_some(sys.joints[0]));
         }
         if best.as_ref().is_none_or(|(b, _)| sys.ratio > b.ratio) {
             best = Some((sys, k));
@@ -263,11 +275,61 @@ fn eliminate_and_solve(
     match best {
         Some((sys, k)) => {
             hint.set(k);
-            solve_with(g, pose, free, &sys, found);
-            sys.ratio
+            let shared = solve_with(g, pose, free, &sys, found);
+            (sys.ratio, shared.then_some(sys.joints[0]))
         }
-        None => 0.0,
+        None => (0.0, None),
     }
+}
+
+/// Where several solutions share a value of the eigen joint (the CRX at q2 = 0: four
+/// solutions, two pairs, share it), the eigenvalue is multiple: rounding splits it by up
+/// to ε^(1/4), and the null space of `M(x)` has more dimensions than the back-substitution
+/// separates (two) — solutions go missing, and the ones found look like a double root, a
+/// singular configuration they are not. Solutions are intrinsic, the eigen joint is not:
+/// the formulations with other eigen joints, well conditioned for this pose, are solved
+/// too until one sees no shared value; their solutions are added, and a branch one of
+/// them finds as a simple root is not a double one (at a singular configuration, where
+/// two solutions meet, every projection of it is a double root). Whether one did.
+fn with_other_eigen_joints(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    mut shared: Option<usize>,
+    found: &mut Found,
+) -> bool {
+    let mut tried = [false; 6];
+    for form in FORMULATIONS {
+        let Some(joint) = shared else {
+            return true;
+        };
+        tried[joint] = true;
+        if tried[form.eigen_joint()] {
+            continue;
+        }
+        let Some(sys) = System::new(g, pose, form) else {
+            continue;
+        };
+        if sys.ratio < WELL_CONDITIONED {
+            continue;
+        }
+        debug_assert_eq!(sys.joints[0], form.eigen_joint());
+        let mut more = Found::default();
+        shared = solve_with(g, pose, free, &sys, &mut more).then_some(form.eigen_joint());
+        for c in more.as_slice() {
+            let room = found.as_slice().len() < FOUND;
+            match found.as_mut_slice().iter_mut().find(|f| same(&f.q, &c.q)) {
+                Some(f) if f.fit == Fit::Double && c.fit == Fit::Checked => f.fit = c.fit,
+                Some(_) => {}
+                None if room => found.push(c.q, c.fit),
+                None => {}
+            }
+        }
+        if shared.is_none() {
+            return true;
+        }
+    }
+    false
 }
 
 /// A formulation whose pencil's pivot ratio is at least this is used without looking at
@@ -287,6 +349,12 @@ impl Hint {
         Hint(AtomicUsize::new(0))
     }
 
+    /// Start with formulation `k` of [`FORMULATIONS`] (modulo their number): the state a
+    /// hint is in after a pose that needed that one — how a test reaches every state.
+    pub const fn at(k: usize) -> Hint {
+        Hint(AtomicUsize::new(k % FORMULATIONS.len()))
+    }
+
     fn get(&self) -> usize {
         self.0.load(Ordering::Relaxed) % FORMULATIONS.len()
     }
@@ -296,15 +364,28 @@ impl Hint {
     }
 }
 
-/// Steps 4–6 on one regular formulation.
-fn solve_with(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], sys: &System, found: &mut Found) {
+/// Steps 4–6 on one regular formulation; whether solutions may be missing because a
+/// value of the eigen joint is shared by more of them than the back-substitution
+/// separates: a real root whose null space it could not read or has more than two
+/// dimensions, a solution read off a root split from the real line with a single null
+/// vector, or roots near the real line none of which gave a branch.
+fn solve_with(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    sys: &System,
+    found: &mut Found,
+) -> bool {
+    let mut shared = false;
+    let before = found.as_slice().len();
     let mut roots = [(0.0, 0.0); 2 * 12];
     let n = sys.real_roots(&mut roots);
     let r06 = pose.r * g.r_tool.transpose();
     let f = sys.eliminated;
     let xf = orthogonal(&g.h[f]);
     for &(x, im) in &roots[..n] {
-        let (branches, count) = sys.back_substitute(x);
+        let (branches, count, wider) = sys.back_substitute(x);
+        shared |= (wider || count == 0) && im <= REAL;
         for mut q in branches.into_iter().take(count) {
             // The eliminated joint by SP1: rot(h_f, q_f) = (R before f)ᵀ R06 (R after f)ᵀ.
             let turn = |j: usize| rot(&g.h[j], q[j]);
@@ -314,12 +395,14 @@ fn solve_with(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], sys: &System, found
             let (qf, ff) = sp1_angle(&xf, &(target * xf), &g.h[f], free[f]);
             q[f] = qf.theta;
             // Newton on `fk` where the back-substitution left more than rounding.
-            let q = if miss(g, &q, pose) > POLISHED * (1.0 + pose.p.amax()) {
-                polish(g, q, pose)
-            } else {
-                q
-            };
-            let q = q.map(wrap);
+            let close = miss(g, &q, pose) <= POLISHED * (1.0 + pose.p.amax());
+            let q = if close { q } else { polish(g, q, pose) }.map(wrap);
+            // Whether the branch reaches the pose: measured once, where asked.
+            let reach = OnceCell::new();
+            let reached = || *reach.get_or_init(|| close || reaches(g, &q, pose));
+            // A solution read as a root split off the real line with one null vector:
+            // two met there, or more share the value (then some are missing).
+            shared |= im > SPLIT && count == 1 && reached();
             // Two eigenvalues of one solution (a double root split by rounding) polish to
             // it twice.
             if found.as_slice().iter().any(|c| same(&c.q, &q)) {
@@ -328,7 +411,7 @@ fn solve_with(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], sys: &System, found
             // A root off the real line, or a vector of a two-dimensional null space (one
             // of them may be a neighbouring root's), is a solution only where it reaches
             // the pose.
-            if (im > REAL || count == 2) && !reaches(g, &q, pose) {
+            if (im > REAL || count == 2) && !reached() {
                 continue;
             }
             // A split root with one null vector is one configuration where two solutions
@@ -344,6 +427,9 @@ fn solve_with(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], sys: &System, found
             }
         }
     }
+    // Roots near the real line but no branch from any: a value shared by four solutions
+    // splits by ~ε^(1/4), and none of its null vectors is read right.
+    shared || (n > 0 && found.as_slice().len() == before)
 }
 
 /// A back-substituted branch this close to the pose (relative to its position's size) is

@@ -63,16 +63,18 @@ impl System {
     /// Step 5: the five joints other than the eliminated one for the root `x` (the
     /// eliminated joint's slot left 0) — two configurations where `M(x)` has a null space
     /// of dimension two (two solutions sharing this joint's value, as the CRX's do), else
-    /// one.
-    pub(super) fn back_substitute(&self, x: f64) -> ([[f64; 6]; 2], usize) {
+    /// one; and whether the null space has more dimensions than that (more solutions
+    /// share the value than are read here: the CRX's two pairs at q2 = 0).
+    pub(super) fn back_substitute(&self, x: f64) -> ([[f64; 6]; 2], usize, bool) {
         let qe = OFFSETS[0] + 2.0 * atan2(x, 1.0);
         // M(x) / (1 + x²): bounded as x → ∞.
         let scale = 1.0 / (1.0 + x * x);
         let [c, b, a] = &self.pencil;
         let m = (c + b * x + a * (x * x)) * scale;
         let mut out = [[0.0; 6]; 2];
-        let vectors = match null_space(&m) {
-            NullSpace::None => return (out, 0),
+        let (space, wider) = null_space(&m);
+        let vectors = match space {
+            NullSpace::None => return (out, 0, wider),
             NullSpace::One(v) => [v, v],
             NullSpace::Two(v1, v2) => split_pair(&v1, &v2),
         };
@@ -80,7 +82,7 @@ impl System {
         for (slot, v) in out.iter_mut().zip(&vectors).take(n) {
             *slot = self.joints_from(qe, v);
         }
-        (out, n)
+        (out, n, wider)
     }
 
     /// The five joints from the eigen joint's value `qe` and a monomial vector `v`.
@@ -158,12 +160,15 @@ enum NullSpace {
 const SECOND_NULL: f64 = 1e-4;
 
 /// The null space of `m` (see [`NullSpace`]) by Gaussian elimination with complete
-/// pivoting: the last pivots are the smallest, their columns set free.
-fn null_space(m: &SMatrix<f64, 12, 12>) -> NullSpace {
+/// pivoting: the last pivots are the smallest, their columns set free; and whether the
+/// tenth pivot is as small as a second null vector's too (three or more dimensions,
+/// which this reads as none or two).
+fn null_space(m: &SMatrix<f64, 12, 12>) -> (NullSpace, bool) {
     let mut a = *m;
     let mut cols: [usize; 12] = core::array::from_fn(|i| i);
     let mut first = 0.0;
     let mut rank = 11;
+    let mut wider = false;
     for k in 0..11 {
         let (mut bi, mut bj, mut best) = (k, k, 0.0);
         for i in k..12 {
@@ -176,6 +181,7 @@ fn null_space(m: &SMatrix<f64, 12, 12>) -> NullSpace {
         if k == 0 {
             first = best;
         }
+        wider |= k == 9 && best <= SECOND_NULL * first;
         if best == 0.0 || (k == 10 && best <= SECOND_NULL * first) {
             rank = k;
             break;
@@ -191,7 +197,7 @@ fn null_space(m: &SMatrix<f64, 12, 12>) -> NullSpace {
         }
     }
     if rank < 10 {
-        return NullSpace::None;
+        return (NullSpace::None, true);
     }
     // Unknowns in pivot order: the free ones a unit vector each, the others by
     // back-substitution.
@@ -212,11 +218,12 @@ fn null_space(m: &SMatrix<f64, 12, 12>) -> NullSpace {
         let n = v.norm();
         (n.is_finite() && n > 0.0).then(|| v / n)
     };
-    match (rank, solve(11), solve(10)) {
+    let space = match (rank, solve(11), solve(10)) {
         (11, Some(v), _) => NullSpace::One(v),
         (10, Some(v1), Some(v2)) => NullSpace::Two(v1, v2),
         _ => NullSpace::None,
-    }
+    };
+    (space, wider)
 }
 
 /// The two monomial vectors (`v[3 i + j] = xa^i xb^j`, up to scale) in the span of `v1`,
