@@ -4,7 +4,10 @@
 //!
 //! - the Kinova Jaco 2 (60° wrist, `robots/kinova_jaco.toml`);
 //! - the FANUC CRX-10iA/L (`robots/fanuc_crx10ial.toml`, from ROS-Industrial's URDF);
-//! - the Kinova Gen3 with joint 7 locked at its generating value (`ik_with`).
+//! - the Kinova Gen3 with joint 7 locked at its generating value (`ik_with`);
+//! - the CRX's poses moved 2 m away from its base, out of its reach (1.4 m): what a
+//!   reachability map pays where the arm cannot go (no solution, and the solver must
+//!   say so).
 //!
 //! Target: ≤ 20 µs per all-solutions call for the Jaco and the CRX. A one-off check
 //! first: every exact solution within 1e-10 of its pose (kinegen's fk), the solution
@@ -33,6 +36,23 @@ fn bench(c: &mut Criterion) {
     let crx_set = poses(&crx, 28, n);
     let gen3_set = poses(&gen3, 28, n);
     let ur5_set = poses(&ur5, 28, n);
+    let far_set: Vec<_> = crx_set
+        .iter()
+        .map(|(pose, q)| {
+            let mut far = *pose;
+            let r = (pose[0][3].powi(2) + pose[1][3].powi(2) + pose[2][3].powi(2)).sqrt();
+            for row in far.iter_mut().take(3) {
+                row[3] *= 1.0 + 2.0 / r.max(1e-3);
+            }
+            (far, *q)
+        })
+        .collect();
+    assert!(
+        far_set
+            .iter()
+            .all(|(p, _)| crx.ik(p).exact().next().is_none()),
+        "a moved pose is still reached"
+    );
     check_solutions(
         "kinova_jaco (general 6R)",
         &jaco,
@@ -65,6 +85,13 @@ fn bench(c: &mut Criterion) {
     group.bench_function("fanuc_crx10ial", |b| {
         b.iter(|| {
             for (pose, _) in &crx_set {
+                black_box(crx.ik(black_box(pose)));
+            }
+        })
+    });
+    group.bench_function("fanuc_crx10ial_out_of_reach", |b| {
+        b.iter(|| {
+            for (pose, _) in &far_set {
                 black_box(crx.ik(black_box(pose)));
             }
         })
