@@ -2,7 +2,8 @@
 # Firmware check for CI (called from .ci/run), also fine to run by hand:
 #   1. installs what is missing: the thumbv7em-none-eabihf target (rustup) and
 #      qemu-system-arm (Debian's apt-get, non-interactive);
-#   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32) and the host check;
+#   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32, IK; the Jaco's general
+#      6R IK and the stack it takes) and the host check;
 #      twice: the default closed-form IK, then the size-first one (feature small-ik);
 #   3. runs the firmware on QEMU's mps2-an386 (Cortex-M4F) with a time limit, its
 #      semihosting output piped into the host check, which compares every value with the

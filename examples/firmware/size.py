@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Flash size of the generated UR5 functions in the firmware ELF.
+"""Flash size of the generated UR5 functions (and the Jaco's general 6R `ik`) in the firmware ELF.
 
 Builds the firmware (release profile of Cargo.toml: opt-level "s", LTO, one codegen unit;
 `--opt-level 3` overrides the level), then reads symbol sizes with `llvm-nm` and call
@@ -145,6 +145,21 @@ def main():
         shared = reached["f64"] & reached["f32"]
         print(f"\nroutines both `ik`s reach (counted in both totals above): "
               f"{sum(size.get(s, 0) for s in shared)} bytes")
+    # The Jaco's general 6R `ik` (f64): its wrapper and everything it reaches, and the part
+    # the UR5's f64 methods and `ik` do not reach already.
+    root = "jaco_ik_f64"
+    if root in size:
+        everything = reach(graph, {root}) - {root}
+        ur5 = reach(graph, {f"ur5_{m}_f64" for m in METHODS} | {"ur5_ik_f64"}) | {
+            f"ur5_{m}_f64" for m in METHODS} | {"ur5_ik_f64"}
+        own = sorted(everything - ur5, key=lambda s: -size.get(s, 0))
+        n_all = size[root] + sum(size.get(s, 0) for s in everything)
+        n_own = size[root] + sum(size.get(s, 0) for s in own)
+        print(f"\n| Jaco `ik` (f64, general 6R) | bytes |\n|---|---:|")
+        print(f"| wrapper `{root}` | {size[root]} |")
+        print(f"| with every routine it reaches | {n_all} |")
+        print(f"| **of which the UR5's code above does not reach** | **{n_own}** |")
+        print(f"\nJaco ik routines: " + ", ".join(f"{short(s)} {size.get(s, 0)}" for s in own[:25]))
     print(f"\nwhole image: {subprocess.run([tool('llvm-size'), elf], capture_output=True, text=True).stdout.strip()}")
 
 

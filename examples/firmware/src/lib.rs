@@ -1,5 +1,6 @@
 //! What the firmware and the host check share: the UR5 in single precision and the
-//! joint configurations the firmware evaluates.
+//! joint configurations the firmware evaluates (the UR5's, and the Kinova Jaco's for the
+//! general 6R `ik`).
 //!
 //! The f64 UR5 is `kinegen_robots::Ur5`; its f32 twin is generated here from the same
 //! TOML file with `scalar: f32` (the macro's file form, path relative to this crate).
@@ -27,8 +28,18 @@ pub const CONFIGS: [[f64; 6]; 5] = [
     [2.5, 0.577, -1.414, 3.1, -2.236, -0.31],
 ];
 
+/// Joint configurations (rad) of the Kinova Jaco (no joint limits) whose poses the
+/// firmware solves with the general 6R `ik` (Raghavan–Roth's elimination, a 24 × 24
+/// eigenproblem): regular configurations, the generating one among the solutions.
+pub const JACO_CONFIGS: [[f64; 6]; 3] = [
+    // Arbitrary; the check asks for the generating configuration among the solutions.
+    [0.3, 2.9, 1.2, -0.8, 1.9, 0.4],
+    [-1.1, 3.6, 0.7, 2.2, -1.3, -2.5],
+    [2.4, 2.2, 2.0, 0.1, 0.9, 1.7],
+];
+
 /// First line the firmware prints: tells the check it reads this format.
-pub const HEADER: &str = "kinegen-firmware v3";
+pub const HEADER: &str = "kinegen-firmware v4";
 /// Last line the firmware prints when every configuration was reported.
 pub const TRAILER: &str = "end";
 

@@ -11,14 +11,19 @@
 //!   rows, 4 ε for rotation entries and angular rows, 8 ε·0.12 m³ for the determinant
 //!   (0.12 m³ is the largest |det J| of the UR5 seen there), ε = f32::EPSILON.
 //!
+//! - The Jaco's general 6R `ik` (f64): the firmware's solutions against the host's (count,
+//!   flags and order equal, joint values to 1e-9 rad), the generating configuration among
+//!   the exact ones; and the stack the firmware measured for it and for the UR5's `ik`,
+//!   printed (a figure must be below the painted 512 KB).
+//!
 //! Exit status 0 when everything agrees, 1 otherwise (with the differences printed).
 
 use std::collections::HashMap;
 use std::io::Read;
 use std::process::ExitCode;
 
-use kinegen_firmware::{to_f32, Ur5F32, CONFIGS, HEADER, TRAILER};
-use kinegen_robots::Ur5;
+use kinegen_firmware::{to_f32, Ur5F32, CONFIGS, HEADER, JACO_CONFIGS, TRAILER};
+use kinegen_robots::{KinovaJaco, Ur5};
 
 /// UR5's reach (m): |a2| + |a3| + d4 + d6 bounds the tool point's distance from the base.
 const REACH: f64 = 0.425 + 0.39225 + 0.10915 + 0.0823 + 0.089159 + 0.09465;
@@ -52,6 +57,13 @@ fn parse(text: &str) -> Result<Records, String> {
                 println!("firmware: CPACR = {bits:#010x} (CP10/CP11 full access: FPU on)");
             }
             ["error", ..] => return Err(format!("firmware reported: {line}")),
+            ["stack", function, bytes] => {
+                let bytes: f64 = bytes.parse().map_err(|e| format!("`{line}`: {e}"))?;
+                let key = ("stack".to_string(), 0, function.to_string());
+                if records.insert(key, vec![bytes]).is_some() {
+                    return Err(format!("record given twice: `{line}`"));
+                }
+            }
             [scalar, case, name, values @ ..] => {
                 let case: usize = case.parse().map_err(|e| format!("`{line}`: {e}"))?;
                 // f32 values are printed as the shortest text that reads back to the
@@ -263,7 +275,52 @@ fn main() -> ExitCode {
             }
         });
     }
+    // The Jaco's general 6R: the same solutions as the host's; the generating
+    // configuration among the exact ones.
+    let jaco = KinovaJaco::default();
+    for (case, q) in JACO_CONFIGS.iter().enumerate() {
+        f64_fw.check("jaco-q", case, get("f64", case, "jaco-q"), q, &|_| 0.0);
+        let ik = jaco.ik(&jaco.fk(q));
+        let mut want = vec![ik.len() as f64];
+        for b in ik.iter() {
+            want.push(if b.exact { 1.0 } else { 0.0 });
+            want.extend(b.q);
+        }
+        f64_fw.check("jaco-ik", case, get("f64", case, "jaco-ik"), &want, &|i| {
+            if is_count_or_flag(i) {
+                0.0
+            } else {
+                1e-9
+            }
+        });
+        let found = get("f64", case, "jaco-ik").is_some_and(|got| {
+            got[1..].chunks(7).any(|s| {
+                s[0] == 1.0
+                    && s[1..].iter().zip(q).all(|(a, b)| {
+                        let d = (a - b).rem_euclid(std::f64::consts::TAU);
+                        d.min(std::f64::consts::TAU - d) <= 1e-9
+                    })
+            })
+        });
+        if !found {
+            f64_fw.failures.push(format!(
+                "Jaco case {case}: the generating configuration is not among the firmware's exact solutions"
+            ));
+        }
+    }
     f64_fw.report("f64 firmware vs f64 host");
+    for function in ["jaco_ik_f64", "ur5_ik_f64"] {
+        match records.get(&("stack".into(), 0, function.into())) {
+            Some(b) if b[0] < 512.0 * 1024.0 - 64.0 => {
+                println!("firmware: `{function}` used {} bytes of stack", b[0]);
+            }
+            Some(b) => f64_failures.push(format!(
+                "`{function}`: stack {} bytes, the whole painted area: more than measured",
+                b[0]
+            )),
+            None => f64_failures.push(format!("no stack record for `{function}`")),
+        }
+    }
     failures.append(&mut f64_failures);
 
     // f32 against the host's f32 twin: the same single-precision code on another IEEE machine.
@@ -364,8 +421,9 @@ fn main() -> ExitCode {
 
     if failures.is_empty() {
         println!(
-            "check: firmware output agrees with the host ({} configurations)",
-            CONFIGS.len()
+            "check: firmware output agrees with the host ({} UR5 and {} Jaco configurations)",
+            CONFIGS.len(),
+            JACO_CONFIGS.len()
         );
         ExitCode::SUCCESS
     } else {
