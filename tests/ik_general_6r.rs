@@ -306,3 +306,43 @@ fn crx_published_example() {
         );
     }
 }
+
+/// The CRX-10iA/L with q2 = 0 and q3 = −π/2: axes 1 and 4 coincide, and the pose's
+/// solutions include a continuum (q1 + q4 fixed, each alone free). The solver keeps one
+/// point of it, not a crowd of samples that would push the isolated solutions out of the
+/// 16 places; `ik_near` stays at the caller's configuration on it.
+#[test]
+fn crx_self_motion_kept_once() {
+    use kinegen_robots::FanucCrx10iaL;
+    let robot = FanucCrx10iaL::default();
+    let g = robot.ik_geometry();
+    for (q1, q4, q5, q6) in [
+        (-0.859_756, -0.531_613, -1.769_135, -0.548_257),
+        (0.4, 1.1, 0.7, -2.0),
+        (2.5, -0.3, -2.2, 1.2),
+    ] {
+        let q = [q1, 0.0, -FRAC_PI_2, q4, q5, q6];
+        let pose = Pose::from_matrix(&robot.fk(&q));
+        let sols = robot.ik(&robot.fk(&q));
+        let exact: Vec<[f64; 6]> = sols
+            .exact()
+            .map(|b| b.q)
+            .filter(|s| miss(&g, s, &pose) <= 1e-10)
+            .collect();
+        // On the continuum: q2 = 0, q3 = −π/2, q1 + q4 = q1 + q4 of the generating one.
+        let on_it = exact
+            .iter()
+            .filter(|s| {
+                s[1].abs() < 1e-6
+                    && (s[2] + FRAC_PI_2).abs() < 1e-6
+                    && gap(
+                        &[s[0] + s[3], 0.0, 0.0, 0.0, 0.0, 0.0],
+                        &[q1 + q4, 0.0, 0.0, 0.0, 0.0, 0.0],
+                    ) < 1e-6
+            })
+            .count();
+        assert_eq!(on_it, 1, "{q:?}: {exact:?}");
+        let near = robot.ik_near(&robot.fk(&q), &q).expect("reached");
+        assert!(gap(&near, &q) <= 1e-9, "{q:?}: ik_near moved to {near:?}");
+    }
+}

@@ -3,7 +3,7 @@
 //! if they are one crate (`same_crate` below), and the run checks that the runtime
 //! built on 0.35 still solves: every configuration of 300 is among the closed-form
 //! solutions of its pose, for the UR5 (a subproblem family) and the Jaco (the general
-//! 6R, whose eigenproblem is nalgebra's Schur decomposition).
+//! 6R, whose pencil and null spaces are nalgebra matrices).
 //!
 //! Run by `.ci/run` (`cargo run` here); exit status 0 when every check holds.
 

@@ -24,7 +24,7 @@
 //! 3. with `x = tan(q/2)` those are polynomials of degree 2 in each of x3, x4, x5;
 //!    multiplied by x4 they give twelve equations linear in the twelve monomials
 //!    `x4^i x5^j` (i ≤ 3, j ≤ 2): `(A x3² + B x3 + C) v = 0`, a quadratic eigenproblem;
-//! 4. its 24 eigenvalues (a 24 × 24 companion matrix, real Schur form) are x3's
+//! 4. its 24 eigenvalues (a 24 × 24 companion matrix, Francis's QR: `eigenvalues.rs`) are x3's
 //!    candidates — at most 16 real solutions, the other roots complex;
 //! 5. for each real x3 the null vector `v` of the 12 × 12 matrix gives x4, x5; the eight
 //!    products give q1, q2 (the triangular factor of step 2); q6 by SP1;
@@ -42,13 +42,18 @@
 //! none), the forms with other eigen joints too; where every form degenerates, the
 //! solutions of the pose moved off by ±1e-4 and ±1e-3, tracked back by Newton steps.
 //! Branches within 2e-6 rad are one double root (merged, flagged singular), as is a branch
-//! whose Jacobian is singular to rounding (Hadamard's ratio below 1e-7).
+//! whose Jacobian is singular to rounding (Hadamard's ratio below 1e-7). Where the
+//! solutions form a continuum (axes that coincide at a special pose), the eigenvalues are
+//! any of its points: singular branches joined by a segment of solutions are one, the
+//! caller's configuration where it is on it; and the regular solutions take the 16 places
+//! first.
 //!
 //! Everything here runs on the numbers of the geometry: the engine's part, at expansion
 //! time, is to prove that no family of subproblems fits (either way round) and that every
 //! joint is revolute. No allocation: every matrix is on the stack (the 24 × 24 companion
-//! is 4.6 kB).
+//! is 4.6 kB, reduced in place).
 
+mod eigenvalues;
 mod elimination;
 mod formulation;
 mod roots;
@@ -163,20 +168,97 @@ pub fn general_6r<const K: usize>(
         {
             Some(c) => c.q = here,
             None if room => found.push(here, Fit::Free),
-            None => {}
+            // Full (a continuum's samples): it takes the place of the farthest branch.
+            None => {
+                if let Some(c) = found
+                    .as_mut_slice()
+                    .iter_mut()
+                    .max_by(|a, b| miss(g, &a.q, pose).total_cmp(&miss(g, &b.q, pose)))
+                {
+                    (c.q, c.fit) = (here, Fit::Free);
+                }
+            }
         }
     }
-    // Spurious real roots (the pencil's rounding) polish to nowhere: the closest first.
-    let mut order: [(f64, usize); FOUND] = [(f64::INFINITY, 0); FOUND];
+    one_per_self_motion(g, pose, &here, &mut found);
+    // Spurious real roots (the pencil's rounding) polish to nowhere: the closest first,
+    // and of those reaching the pose the regular ones first (the isolated solutions; a
+    // continuum's points, singular, can number more than the room for them).
+    let mut order: [(bool, f64, usize); FOUND] = [(true, f64::INFINITY, 0); FOUND];
     for (i, c) in found.as_slice().iter().enumerate() {
-        order[i] = (miss(g, &c.q, pose), i);
+        let m = miss(g, &c.q, pose);
+        let regular = m <= REACHES * (1.0 + pose.p.amax()) && c.fit != Fit::Double;
+        order[i] = (!regular, m, i);
     }
     let m = found.as_slice().len();
-    order[..m].sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-    for &(_, i) in order[..m].iter().take(K) {
+    order[..m].sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    for &(_, _, i) in order[..m].iter().take(K) {
         let c = found.as_slice()[i];
         out.push(c.q, c.fit);
     }
+}
+
+/// Keeps one solution of each self-motion: at a singular pose whose solutions form a
+/// continuum (the CRX with q2 = 0 and q3 = −π/2, where axes 1 and 4 coincide and only
+/// q1 + q4 is fixed), the eigenvalues are any points of it, and up to 24 of them would
+/// crowd the isolated solutions out. Two singular branches are on one self-motion where
+/// the segment between them solves the pose too (three points of it: coincident axes
+/// make such a continuum a straight line in joint space; a curved one keeps its samples).
+/// Of each, the caller's configuration where it is one, else the point nearest to it.
+fn one_per_self_motion(g: &Geometry<6>, pose: &Pose, here: &[f64; 6], found: &mut Found) {
+    let all = *found;
+    let items = all.as_slice();
+    let singular: [bool; FOUND] = core::array::from_fn(|i| {
+        i < items.len()
+            && reaches(g, &items[i].q, pose)
+            && hadamard_ratio(g, &items[i].q) < NEAR_SINGULAR
+    });
+    if singular.iter().filter(|&&s| s).count() < 2 {
+        return;
+    }
+    // Each branch's group: the first member's index (the groups are unions of pairs).
+    let mut group: [usize; FOUND] = core::array::from_fn(|i| i);
+    for i in 0..items.len() {
+        for j in i + 1..items.len() {
+            if !singular[i] || !singular[j] || group[j] == group[i] {
+                continue;
+            }
+            let (a, b) = (&items[i].q, &items[j].q);
+            // To the ends' own rounding: two distinct solutions near a fold, a few 1e-6
+            // apart, have a chord that misses by ~1e-12 (the curvature), a line none.
+            let ends = miss(g, a, pose).max(miss(g, b, pose));
+            let on_line = [0.25, 0.5, 0.75].iter().all(|t| {
+                let q: [f64; 6] = core::array::from_fn(|k| a[k] + t * wrap(b[k] - a[k]));
+                miss(g, &q, pose) <= 2.0 * ends + 1e-14 * (1.0 + pose.p.amax())
+            });
+            if on_line {
+                let (from, to) = (group[j], group[i]);
+                for gk in group.iter_mut().take(items.len()) {
+                    if *gk == from {
+                        *gk = to;
+                    }
+                }
+            }
+        }
+    }
+    let gap = |q: &[f64; 6]| {
+        q.iter()
+            .zip(here)
+            .map(|(x, y)| abs(wrap(x - y)))
+            .fold(0.0, f64::max)
+    };
+    let mut kept = Found::default();
+    for i in 0..items.len() {
+        // The group's member nearest the caller's configuration stands for it.
+        let nearest = (0..items.len())
+            .filter(|&j| group[j] == group[i])
+            .min_by(|&x, &y| gap(&items[x].q).total_cmp(&gap(&items[y].q)))
+            .unwrap_or(i);
+        if nearest == i {
+            kept.push(items[i].q, items[i].fit);
+        }
+    }
+    *found = kept;
 }
 
 /// Branches closer than this in every joint (radians) are one solution twice: a double
@@ -257,7 +339,9 @@ fn eliminate_and_solve(
     // The remembered formulation where it is well conditioned for this pose; else the
     // best conditioned of all (a pose near a degenerate one for some of them).
     let first = hint.get();
-    let mut best: Option<(System, usize)> = None;
+    // The best so far by its ratio and index only, built again at the end: one system on
+    // the stack at a time (9 kB each; the Cortex-M4F's stack), and the rebuild is rare.
+    let mut best: Option<(f64, usize)> = None;
     for i in 0..FORMULATIONS.len() {
         let k = (first + i) % FORMULATIONS.len();
         let Some(sys) = System::new(g, pose, FORMULATIONS[k]) else {
@@ -268,11 +352,11 @@ fn eliminate_and_solve(
             let shared = solve_with(g, pose, free, &sys, found);
             return (sys.ratio, shared.then_some(sys.joints[0]));
         }
-        if best.as_ref().is_none_or(|(b, _)| sys.ratio > b.ratio) {
-            best = Some((sys, k));
+        if best.is_none_or(|(ratio, _)| sys.ratio > ratio) {
+            best = Some((sys.ratio, k));
         }
     }
-    match best {
+    match best.and_then(|(_, k)| Some((System::new(g, pose, FORMULATIONS[k])?, k))) {
         Some((sys, k)) => {
             hint.set(k);
             let shared = solve_with(g, pose, free, &sys, found);

@@ -1,8 +1,9 @@
 //! Steps 4 and 5 of the general 6R: the real eigenvalues of the pencil's companion
-//! matrix (real Schur form, bounded iterations), and for each the joints — the null
+//! matrix (Francis's QR, eigenvalues only, bounded sweeps), and for each the joints — the null
 //! vector of the 12 × 12 matrix (two where two solutions share the eigen joint's value),
 //! the ratios of its monomials, the two-joint side from the triangular factor.
 
+use super::eigenvalues::eigenvalues;
 use super::elimination::{System, OFFSETS};
 use crate::ik::subproblems::wrap;
 use crate::math::{abs, atan2, sin_cos, sqrt};
@@ -18,7 +19,7 @@ const NEAR_REAL: f64 = 1e-3;
 /// Francis double-shift sweeps allowed for the 24 × 24 companion matrix: ~2 per
 /// eigenvalue converge; far more means an input it does not converge on (no solutions
 /// then, never a hang).
-const SCHUR_ITERATIONS: usize = 30 * 24;
+const SWEEPS: usize = 30 * 24;
 
 impl System {
     /// The real eigenvalues of the pencil (step 4), and the complex ones within
@@ -26,31 +27,27 @@ impl System {
     /// to its size; how many.
     pub(super) fn real_roots(&self, roots: &mut [(f64, f64); 24]) -> usize {
         let (u, w) = &self.companion;
-        let mut companion = SMatrix::<f64, 24, 24>::zeros();
+        // The companion matrix [[0, I], [−U, −W]] of the pencil (or of its reverse).
+        let mut companion = [[0.0; 24]; 24];
         for i in 0..12 {
-            companion[(i, 12 + i)] = 1.0;
+            companion[i][12 + i] = 1.0;
+            for j in 0..12 {
+                companion[12 + i][j] = -u[(i, j)];
+                companion[12 + i][12 + j] = -w[(i, j)];
+            }
         }
-        companion.view_mut((12, 0), (12, 12)).copy_from(&(-u));
-        companion.view_mut((12, 12), (12, 12)).copy_from(&(-w));
-        // Bounded: nalgebra's `complex_eigenvalues` iterates until convergence (an input
-        // it never converges on would hang the solver).
-        if !companion.iter().all(|x| x.is_finite()) {
-            return 0;
-        }
-        let Some(schur) = nalgebra::Schur::try_new(companion, f64::EPSILON, SCHUR_ITERATIONS)
-        else {
+        let Some(values) = eigenvalues(&mut companion, SWEEPS) else {
             return 0;
         };
-        let values = schur.complex_eigenvalues();
         let mut n = 0;
-        for z in values.iter() {
-            let size = sqrt(z.re * z.re + z.im * z.im);
+        for (re, im) in values {
+            let size = sqrt(re * re + im * im);
             // Real to rounding of the eigenvalue's size, or near it: a double real root (a
             // singular pose) splits into a pair ~√ε apart, farther where the pencil is
             // ill-conditioned; such a pair is tried, and kept only if it reaches the pose.
-            let im = abs(z.im) / (1.0 + size);
+            let im = abs(im) / (1.0 + size);
             if im <= NEAR_REAL {
-                let x = if self.inverted { 1.0 / z.re } else { z.re };
+                let x = if self.inverted { 1.0 / re } else { re };
                 if x.is_finite() {
                     roots[n] = (x, im);
                     n += 1;
