@@ -261,38 +261,22 @@ fn main() -> ExitCode {
         // 1e-9 rad (the firmware's atan2/sqrt come from the `libm` crate, the host's from
         // the platform: a few ulps apart, amplified at most by the subproblems' conditioning
         // away from singular poses).
-        let ik = r64.ik(&r64.fk(q));
-        let mut want = vec![ik.len() as f64];
-        for b in ik.iter() {
-            want.push(if b.exact { 1.0 } else { 0.0 });
-            want.extend(b.q);
-        }
-        f64_fw.check("ik", case, get("f64", case, "ik"), &want, &|i| {
-            if is_count_or_flag(i) {
-                0.0
-            } else {
-                1e-9
-            }
-        });
+        let want = ik_values(&r64.ik(&r64.fk(q)));
+        f64_fw.check("ik", case, get("f64", case, "ik"), &want, &ik_bound);
     }
     // The Jaco's general 6R: the same solutions as the host's; the generating
     // configuration among the exact ones.
     let jaco = KinovaJaco::default();
     for (case, q) in JACO_CONFIGS.iter().enumerate() {
         f64_fw.check("jaco-q", case, get("f64", case, "jaco-q"), q, &|_| 0.0);
-        let ik = jaco.ik(&jaco.fk(q));
-        let mut want = vec![ik.len() as f64];
-        for b in ik.iter() {
-            want.push(if b.exact { 1.0 } else { 0.0 });
-            want.extend(b.q);
-        }
-        f64_fw.check("jaco-ik", case, get("f64", case, "jaco-ik"), &want, &|i| {
-            if is_count_or_flag(i) {
-                0.0
-            } else {
-                1e-9
-            }
-        });
+        let want = ik_values(&jaco.ik(&jaco.fk(q)));
+        f64_fw.check(
+            "jaco-ik",
+            case,
+            get("f64", case, "jaco-ik"),
+            &want,
+            &ik_bound,
+        );
         let found = get("f64", case, "jaco-ik").is_some_and(|got| {
             got[1..].chunks(7).any(|s| {
                 s[0] == 1.0
@@ -432,6 +416,25 @@ fn main() -> ExitCode {
         }
         eprintln!("check: {} disagreement(s)", failures.len());
         ExitCode::FAILURE
+    }
+}
+
+/// An f64 `ik` record's values: the count, then per solution its exact flag and angles.
+fn ik_values<const K: usize>(ik: &kinegen::ik::IkSolutions<6, K>) -> Vec<f64> {
+    let mut v = vec![ik.len() as f64];
+    for b in ik.iter() {
+        v.push(if b.exact { 1.0 } else { 0.0 });
+        v.extend(b.q);
+    }
+    v
+}
+
+/// The f64 `ik` records' bound: count and flags exact, joint values to 1e-9 rad.
+fn ik_bound(i: usize) -> f64 {
+    if is_count_or_flag(i) {
+        0.0
+    } else {
+        1e-9
     }
 }
 
