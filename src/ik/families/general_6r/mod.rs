@@ -241,12 +241,7 @@ fn one_per_self_motion(g: &Geometry<6>, pose: &Pose, here: &[f64; 6], found: &mu
             }
         }
     }
-    let gap = |q: &[f64; 6]| {
-        q.iter()
-            .zip(here)
-            .map(|(x, y)| abs(wrap(x - y)))
-            .fold(0.0, f64::max)
-    };
+    let gap = |q: &[f64; 6]| apart(q, here);
     let mut kept = Found::default();
     for i in 0..items.len() {
         // The group's member nearest the caller's configuration stands for it.
@@ -527,7 +522,19 @@ fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
 
 /// Every joint of `a` within `tol` radians of `b`'s, whole turns apart counting as none.
 fn within(a: &[f64; 6], b: &[f64; 6], tol: f64) -> bool {
-    a.iter().zip(b).all(|(x, y)| abs(wrap(x - y)) < tol)
+    apart(a, b) < tol
+}
+
+/// The largest joint difference of `a` and `b` in radians, whole turns apart counting as
+/// none (infinite where one is not a number: never within anything).
+fn apart(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| abs(wrap(x - y)))
+        .fold(
+            0.0,
+            |m, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+        )
 }
 
 /// `q` reaches `pose`: [`miss`] within [`REACHES`] of the pose's size.

@@ -1,7 +1,7 @@
 //! Steps 4 and 5 of the general 6R: the real eigenvalues of the pencil's companion
-//! matrix (Francis's QR, eigenvalues only, bounded sweeps), and for each the joints — the null
-//! vector of the 12 × 12 matrix (two where two solutions share the eigen joint's value),
-//! the ratios of its monomials, the two-joint side from the triangular factor.
+//! matrix (Francis's QR, eigenvalues only, bounded sweeps), and for each the joints — the
+//! null vector of the 12 × 12 matrix (two where two solutions share the eigen joint's
+//! value), the ratios of its monomials, the two-joint side from the triangular factor.
 
 use super::eigenvalues::eigenvalues;
 use super::elimination::{System, OFFSETS};
