@@ -11,6 +11,7 @@ use kinegen::ik::dispatch::{
 use kinegen::ik::families::WristPair;
 use kinegen_core::kinematics::ik::family::Family;
 use kinegen_core::kinematics::ik::IkModel;
+use kinegen_core::kinematics::program::Program;
 use kinegen_core::model::robot::JointKind;
 use kinegen_core::{Chain, Derived};
 use serde_json::{json, Value};
@@ -43,6 +44,18 @@ pub struct Solver<'a> {
     geometry: DynGeometry,
     revolute: Vec<bool>,
     limits: Vec<[f64; 2]>,
+    /// The tool pose's 12 entries (the engine's `fk` nodes).
+    fk: Program,
+    /// The determinant's singular factors (none without a closed-form determinant).
+    factors: Program,
+}
+
+/// Registers of a [`Solver`]'s programs: one per thread, reused from pose to pose.
+#[derive(Clone, Debug)]
+pub struct Scratch {
+    fk: Vec<f64>,
+    factors: Vec<f64>,
+    values: Vec<f64>,
 }
 
 impl<'a> Solver<'a> {
@@ -58,6 +71,12 @@ impl<'a> Solver<'a> {
             }
         };
         let v = ik.values(chain);
+        let model = &derived.model;
+        let fk_ids: Vec<_> = model.fk_rows.iter().flatten().copied().collect();
+        let factor_ids: Vec<_> = match &derived.det {
+            Some(Ok(det)) => det.factors.iter().map(|f| f.node).collect(),
+            _ => Vec::new(),
+        };
         let (revolute_joints, prismatic) = match &ik.plan.family {
             Family::Planar {
                 revolute,
@@ -94,7 +113,38 @@ impl<'a> Solver<'a> {
                 .iter()
                 .map(|l| l.limits.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]))
                 .collect(),
+            fk: Program::new(&model.sym, chain, &fk_ids),
+            factors: Program::new(&model.sym, chain, &factor_ids),
         })
+    }
+
+    /// Registers for [`Solver::solve_with`].
+    pub fn scratch(&self) -> Scratch {
+        Scratch {
+            fk: self.fk.registers(),
+            factors: self.factors.registers(),
+            values: vec![0.0; self.fk.outputs().max(self.factors.outputs())],
+        }
+    }
+
+    /// The chain solved.
+    pub fn chain(&self) -> &Chain {
+        self.chain
+    }
+
+    /// Joint limits (unlimited joints: ±∞).
+    pub fn limits(&self) -> &[[f64; 2]] {
+        &self.limits
+    }
+
+    /// Which joints are revolute.
+    pub fn revolute(&self) -> &[bool] {
+        &self.revolute
+    }
+
+    /// The joint a 7-joint arm's closed form locks (0-based).
+    pub fn locked_joint(&self) -> Option<usize> {
+        self.plan.locked
     }
 
     /// `IK_FAMILY`.
@@ -108,33 +158,45 @@ impl<'a> Solver<'a> {
     }
 
     /// The tool pose the engine's `fk` gives at `q`.
-    fn fk(&self, q: &[f64]) -> [[f64; 4]; 4] {
-        let m = &self.derived.model;
-        let ids: Vec<_> = m.fk_rows.iter().flatten().copied().collect();
-        let v = m.eval(self.chain, q, &ids);
+    fn fk(&self, q: &[f64], s: &mut Scratch) -> [[f64; 4]; 4] {
+        self.fk.eval(q, &mut s.fk, &mut s.values);
         let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
         for (i, row) in t.iter_mut().take(3).enumerate() {
-            row.copy_from_slice(&v[4 * i..4 * i + 4]);
+            row.copy_from_slice(&s.values[4 * i..4 * i + 4]);
         }
         t
     }
 
-    /// The singular factors' names that vanish at `q`.
-    fn vanishing(&self, q: &[f64]) -> (u32, Vec<String>) {
-        let Some(Ok(det)) = &self.derived.det else {
-            return (0, Vec::new());
-        };
-        let ids: Vec<_> = det.factors.iter().map(|f| f.node).collect();
-        let values = self.derived.model.eval(self.chain, q, &ids);
+    /// The singular factors' values at `q`, in the determinant's order (empty without
+    /// a closed-form determinant).
+    pub fn factor_values<'s>(&self, q: &[f64], s: &'s mut Scratch) -> &'s [f64] {
+        self.factors.eval(q, &mut s.factors, &mut s.values);
+        &s.values[..self.factors.outputs()]
+    }
+
+    /// Bits of the singular factors that vanish at `q`.
+    fn vanishing_bits(&self, q: &[f64], s: &mut Scratch) -> u32 {
         let mut bits = 0;
-        let mut names = Vec::new();
-        for (i, (f, v)) in det.factors.iter().zip(values).enumerate() {
+        for (i, v) in self.factor_values(q, s).iter().enumerate() {
             if v.abs() <= kinegen::ik::solutions::SINGULAR_TOLERANCE {
                 bits |= 1 << i.min(31);
-                names.push(format!("{} = 0", f.text));
             }
         }
-        (bits, names)
+        bits
+    }
+
+    /// The names of the singular factors that vanish at `q`.
+    fn vanishing(&self, q: &[f64], s: &mut Scratch) -> Vec<String> {
+        let Some(Ok(det)) = &self.derived.det else {
+            return Vec::new();
+        };
+        let bits = self.vanishing_bits(q, s);
+        det.factors
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| bits & (1 << (*i).min(31)) != 0)
+            .map(|(_, f)| format!("{} = 0", f.text))
+            .collect()
     }
 
     /// The task rows a planar arm solves (`None`: the whole pose).
@@ -149,8 +211,8 @@ impl<'a> Solver<'a> {
         }
     }
 
-    fn residual(&self, q: &[f64], pose: &[[f64; 4]; 4]) -> f64 {
-        let t = self.fk(q);
+    fn residual(&self, q: &[f64], pose: &[[f64; 4]; 4], s: &mut Scratch) -> f64 {
+        let t = self.fk(q, s);
         let p = kinegen::ik::geometry::Pose::from_matrix(pose);
         match self.task_rows() {
             None => kinegen::ik::solutions::residual(&t, &p),
@@ -167,6 +229,62 @@ impl<'a> Solver<'a> {
         locked: Option<f64>,
         arm_angle: Option<f64>,
     ) -> Result<PoseResult, CliError> {
+        let scratch = std::cell::RefCell::new(self.scratch());
+        let branches = self.branches(pose, near, locked, arm_angle, &scratch)?;
+        let s = &mut *scratch.borrow_mut();
+        let residuals = branches
+            .iter()
+            .map(|b| self.residual(&b.q, &pose, s))
+            .collect();
+        let singular = branches.iter().map(|b| self.vanishing(&b.q, s)).collect();
+        let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
+        let free_joint = match arm_angle {
+            None => match self.plan.locked {
+                Some(k) => Some((k + 1, self.q_locked((locked, near), None)?)),
+                None => None,
+            },
+            Some(_) => None,
+        };
+        Ok(PoseResult {
+            free_joint,
+            arm_angle,
+            branches,
+            residuals,
+            singular,
+            near: near_q,
+        })
+    }
+
+    /// The locked joint's value the solver uses: `--locked`, else the caller's
+    /// configuration's (0 without a locked joint or with an arm angle).
+    fn q_locked(
+        &self,
+        given: (Option<f64>, Option<&[f64]>),
+        arm_angle: Option<f64>,
+    ) -> Result<f64, CliError> {
+        Ok(match (self.plan.locked, given) {
+            _ if arm_angle.is_some() => 0.0,
+            (None, _) => 0.0,
+            (Some(_), (Some(x), _)) => x,
+            (Some(k), (None, Some(q))) => q[k],
+            (Some(k), (None, None)) => return Err(CliError::Usage(format!(
+                "`{}` locks joint {} for its closed form: give its value with --locked, or --near",
+                self.chain.name,
+                k + 1
+            ))),
+        })
+    }
+
+    /// Every solution of `pose` (as [`Solver::solve`]) without the report around them:
+    /// the branches only, evaluated with `scratch`'s registers.
+    pub fn branches(
+        &self,
+        pose: [[f64; 4]; 4],
+        near: Option<&[f64]>,
+        locked: Option<f64>,
+        arm_angle: Option<f64>,
+        scratch: &std::cell::RefCell<Scratch>,
+    ) -> Result<Vec<DynBranch>, CliError> {
         let n = self.chain.dof();
         if arm_angle.is_some() {
             if self.ik.plan.arm_angle.is_none() {
@@ -181,23 +299,11 @@ impl<'a> Solver<'a> {
                 ));
             }
         }
-        let q_locked = match (self.plan.locked, locked, near) {
-            (_, _, _) if arm_angle.is_some() => 0.0,
-            (None, _, _) => 0.0,
-            (Some(_), Some(x), _) => x,
-            (Some(k), None, Some(q)) => q[k],
-            (Some(k), None, None) => {
-                return Err(CliError::Usage(format!(
-                "`{}` locks joint {} for its closed form: give its value with --locked, or --near",
-                self.chain.name,
-                k + 1
-            )))
-            }
-        };
+        let q_locked = self.q_locked((locked, near), arm_angle)?;
         let zeros = vec![0.0; n];
         let free = near.unwrap_or(&zeros);
-        let residual = |q: &[f64]| self.residual(q, &pose);
-        let singular = |q: &[f64]| self.vanishing(q).0;
+        let residual = |q: &[f64]| self.residual(q, &pose, &mut scratch.borrow_mut());
+        let singular = |q: &[f64]| self.vanishing_bits(q, &mut scratch.borrow_mut());
         let checks = Checks {
             residual: &residual,
             singular: &singular,
@@ -211,29 +317,11 @@ impl<'a> Solver<'a> {
             revolute: &self.revolute,
             limits: &self.limits,
         };
-        let branches = match arm_angle {
+        match arm_angle {
             Some(psi) => solve_arm_angle(&problem, psi, &checks),
             None => solve(&problem, &checks),
         }
-        .map_err(|e| CliError::Usage(e.into()))?;
-        let residuals = branches
-            .iter()
-            .map(|b| self.residual(&b.q, &pose))
-            .collect();
-        let singular = branches.iter().map(|b| self.vanishing(&b.q).1).collect();
-        let near = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
-        let free_joint = match arm_angle {
-            None => self.plan.locked.map(|k| (k + 1, q_locked)),
-            Some(_) => None,
-        };
-        Ok(PoseResult {
-            free_joint,
-            arm_angle,
-            branches,
-            residuals,
-            singular,
-            near,
-        })
+        .map_err(|e| CliError::Usage(e.into()))
     }
 }
 

@@ -5,6 +5,7 @@
 //! - [`frames`]: the chain unrolled into link frames, tool and joint axes.
 //! - [`jacobian`]: geometric Jacobian columns `z × (p − o)`, world and tool frame.
 //! - [`model`]: all outputs of one evaluation order, together.
+//! - [`program`]: chosen nodes as a register program, for tools evaluating many configurations.
 //! - [`det`]: the Jacobian determinant in factored closed form, its gradient.
 //! - [`hessian`]: `H[j] = ∂J/∂q_j` from the Jacobian's columns.
 //! - [`jdot`]: `J̇`, `J̇ q̇` and the tool-frame `J̇_ee`, accumulated over the joints.
@@ -19,5 +20,6 @@ pub mod ik;
 pub mod jacobian;
 pub mod jdot;
 pub mod model;
+pub mod program;
 pub mod second_order;
 pub mod transform;

@@ -1,0 +1,242 @@
+//! Chosen nodes of a model as a register program: for tools that evaluate the same
+//! outputs at many configurations (a reachability map, a file of IK poses) without
+//! walking the graph or allocating per call.
+//!
+//! Every operation is the node's own (`a + b`, `a − b`, `a · b`, `−a`) on the same
+//! operand values, and the leaves are what [`SymbolicChain::variables`] gives, so a
+//! program returns the bits [`SymbolicChain::eval`] returns.
+
+use crate::algebra::angles::AngleSource;
+use crate::algebra::graph::{Id, Node};
+use crate::algebra::poly::VarKind;
+use crate::chain::Chain;
+use crate::kinematics::frames::SymbolicChain;
+
+/// One operation: destination register, then operand registers.
+#[derive(Clone, Copy, Debug)]
+enum Op {
+    Add(u32, u32, u32),
+    Sub(u32, u32, u32),
+    Mul(u32, u32, u32),
+    Neg(u32, u32),
+}
+
+/// A joint angle's sine and cosine leaves: `sin_cos(sign·q[joint] + offset)`.
+#[derive(Clone, Copy, Debug)]
+struct AngleLeaf {
+    sin: u32,
+    cos: u32,
+    joint: usize,
+    sign: f64,
+    offset: f64,
+}
+
+/// Straight-line code for a fixed list of nodes of one chain's graph.
+///
+/// ```
+/// use kinegen_core::front::toml_file::load_description_file;
+/// use kinegen_core::kinematics::program::Program;
+/// use kinegen_core::derive;
+///
+/// let (robot, options) = load_description_file("../robots/ur5.toml".as_ref()).unwrap();
+/// let chain = robot.chain();
+/// let derived = derive(&chain, &options);
+/// let ids: Vec<_> = derived.model.fk_rows.iter().flatten().copied().collect();
+/// let program = Program::new(&derived.model.sym, &chain, &ids);
+/// let mut registers = program.registers();
+/// let mut out = vec![0.0; program.outputs()];
+/// let q = [0.1, -1.2, 1.4, -0.3, 1.1, 0.2];
+/// program.eval(&q, &mut registers, &mut out);
+/// assert_eq!(out, derived.model.eval(&chain, &q, &ids));
+/// ```
+#[derive(Clone, Debug)]
+pub struct Program {
+    /// Registers at the start of a call: constants and fixed leaves set, the rest 0.
+    initial: Vec<f64>,
+    /// Prismatic joints' leaves: `(register, joint)`.
+    joints: Vec<(u32, usize)>,
+    angles: Vec<AngleLeaf>,
+    ops: Vec<Op>,
+    outputs: Vec<u32>,
+}
+
+impl Program {
+    /// The program computing `outputs` (nodes of `sym`'s graph) of `chain`.
+    pub fn new(sym: &SymbolicChain, chain: &Chain, outputs: &[Id]) -> Program {
+        let graph = &sym.graph;
+        let ring = &graph.ring;
+        // Registers: the ring's variables keep their numbers; nodes get theirs in order
+        // of first need.
+        let mut initial = vec![0.0; ring.len()];
+        let mut joints = Vec::new();
+        for v in 0..ring.len() {
+            initial[v] = match ring.kind(v as u32) {
+                VarKind::Joint(j) => {
+                    joints.push((v as u32, *j));
+                    0.0
+                }
+                // Rates are not inputs of a program: NaN, as `variables` gives without them.
+                VarKind::Rate(_) => f64::NAN,
+                VarKind::Param(n) => chain.param_value(n),
+                VarKind::Sqrt(k) => f64::from(*k).sqrt(),
+                VarKind::Sin(_) | VarKind::Cos(_) => f64::NAN,
+            };
+        }
+        let mut angles = Vec::new();
+        for a in &sym.angles {
+            let (s, c) = (a.vars.0, a.vars.1);
+            match &a.source {
+                AngleSource::Joint {
+                    joint,
+                    sign,
+                    offset,
+                } => angles.push(AngleLeaf {
+                    sin: s,
+                    cos: c,
+                    joint: *joint,
+                    sign: f64::from(*sign),
+                    offset: chain.eval(offset),
+                }),
+                AngleSource::Constant(v) => {
+                    let x = chain.eval(v);
+                    initial[s as usize] = x.sin();
+                    initial[c as usize] = x.cos();
+                }
+            }
+        }
+        // Each needed node after its operands (an explicit stack: chains are deep).
+        let mut register: Vec<Option<u32>> = vec![None; graph.len()];
+        let mut ops = Vec::new();
+        let mut stack: Vec<(Id, bool)> = outputs.iter().rev().map(|&id| (id, false)).collect();
+        while let Some((id, expanded)) = stack.pop() {
+            if register[id as usize].is_some() {
+                continue;
+            }
+            let node = graph.node(id);
+            let operands: &[Id] = match node {
+                Node::Num(_) | Node::Leaf(_) => &[],
+                Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => &[*a, *b],
+                Node::Neg(a) => core::slice::from_ref(a),
+            };
+            if !expanded && operands.iter().any(|o| register[*o as usize].is_none()) {
+                stack.push((id, true));
+                stack.extend(operands.iter().rev().map(|&o| (o, false)));
+                continue;
+            }
+            let r = |o: Id| register[o as usize].expect("operand placed first");
+            let reg = match node {
+                Node::Leaf(v) => *v,
+                Node::Num(x) => {
+                    initial.push(crate::model::value::rat_to_f64(x));
+                    (initial.len() - 1) as u32
+                }
+                _ => {
+                    initial.push(0.0);
+                    let d = (initial.len() - 1) as u32;
+                    ops.push(match *node {
+                        Node::Add(a, b) => Op::Add(d, r(a), r(b)),
+                        Node::Sub(a, b) => Op::Sub(d, r(a), r(b)),
+                        Node::Mul(a, b) => Op::Mul(d, r(a), r(b)),
+                        Node::Neg(a) => Op::Neg(d, r(a)),
+                        Node::Num(_) | Node::Leaf(_) => unreachable!("handled above"),
+                    });
+                    d
+                }
+            };
+            register[id as usize] = Some(reg);
+        }
+        let outputs = outputs
+            .iter()
+            .map(|&id| register[id as usize].expect("every output placed"))
+            .collect();
+        Program {
+            initial,
+            joints,
+            angles,
+            ops,
+            outputs,
+        }
+    }
+
+    /// Registers for [`Program::eval`], ready to use (reuse them across calls).
+    pub fn registers(&self) -> Vec<f64> {
+        self.initial.clone()
+    }
+
+    /// How many values [`Program::eval`] writes.
+    pub fn outputs(&self) -> usize {
+        self.outputs.len()
+    }
+
+    /// How many operations one call runs.
+    pub fn operations(&self) -> usize {
+        self.ops.len()
+    }
+
+    /// The outputs at `q` into `out`, using `registers` from [`Program::registers`].
+    ///
+    /// # Panics
+    /// If `registers` did not come from this program, `q` is shorter than the chain or
+    /// `out` shorter than [`Program::outputs`].
+    pub fn eval(&self, q: &[f64], registers: &mut [f64], out: &mut [f64]) {
+        let r = registers;
+        for &(reg, j) in &self.joints {
+            r[reg as usize] = q[j];
+        }
+        for a in &self.angles {
+            let x = a.sign * q[a.joint] + a.offset;
+            r[a.sin as usize] = x.sin();
+            r[a.cos as usize] = x.cos();
+        }
+        for op in &self.ops {
+            match *op {
+                Op::Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
+                Op::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
+                Op::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
+                Op::Neg(d, a) => r[d as usize] = -r[a as usize],
+            }
+        }
+        for (o, &reg) in out.iter_mut().zip(&self.outputs) {
+            *o = r[reg as usize];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::derive;
+    use crate::front::toml_file::load_description_file;
+
+    /// Every output group of shipped robots (revolute and prismatic joints, offsets,
+    /// constant twists) gives the graph walk's bits.
+    #[test]
+    fn same_bits_as_the_graph_walk() {
+        for file in ["ur5", "puma560", "scara", "stanford", "panda"] {
+            let path = format!("{}/../robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+            let (robot, options) = load_description_file(path.as_ref()).unwrap();
+            let chain = robot.chain();
+            let derived = derive(&chain, &options);
+            let m = &derived.model;
+            let mut ids: Vec<Id> = m.fk_rows.iter().flatten().copied().collect();
+            ids.extend(m.jacobian.iter().flatten());
+            if let Some(Ok(det)) = &derived.det {
+                ids.push(det.node);
+                ids.extend(det.factors.iter().map(|f| f.node));
+            }
+            let program = Program::new(&m.sym, &chain, &ids);
+            let mut regs = program.registers();
+            let mut out = vec![0.0; program.outputs()];
+            for k in 0..20 {
+                let q: Vec<f64> = (0..chain.dof())
+                    .map(|j| ((k * 7 + j * 3) as f64 * 0.61).sin() * 2.5)
+                    .collect();
+                program.eval(&q, &mut regs, &mut out);
+                let walked = m.eval(&chain, &q, &ids);
+                for (a, b) in out.iter().zip(&walked) {
+                    assert_eq!(a.to_bits(), b.to_bits(), "{file} at {q:?}");
+                }
+            }
+        }
+    }
+}
