@@ -69,8 +69,8 @@ impl Program {
         // of first need.
         let mut initial = vec![0.0; ring.len()];
         let mut joints = Vec::new();
-        for v in 0..ring.len() {
-            initial[v] = match ring.kind(v as u32) {
+        for (v, slot) in initial.iter_mut().enumerate() {
+            *slot = match ring.kind(v as u32) {
                 VarKind::Joint(j) => {
                     joints.push((v as u32, *j));
                     0.0
