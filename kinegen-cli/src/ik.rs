@@ -267,11 +267,13 @@ impl<'a> Solver<'a> {
             (None, _) => 0.0,
             (Some(_), (Some(x), _)) => x,
             (Some(k), (None, Some(q))) => q[k],
-            (Some(k), (None, None)) => return Err(CliError::Usage(format!(
+            (Some(k), (None, None)) => {
+                return Err(CliError::Usage(format!(
                 "`{}` locks joint {} for its closed form: give its value with --locked, or --near",
                 self.chain.name,
                 k + 1
-            ))),
+            )))
+            }
         })
     }
 
@@ -517,21 +519,7 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
             })
         }
         (None, Some(path)) => {
-            let poses = read_json(path, "--poses")?;
-            let poses = poses
-                .as_array()
-                .ok_or_else(|| {
-                    CliError::Usage(format!(
-                        "{}: expected a JSON array of poses",
-                        path.display()
-                    ))
-                })?
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    pose_from(&numbers(p, 4, 4), &format!("{}: pose {i}", path.display()))
-                })
-                .collect::<Result<Vec<_>, _>>()?;
+            let poses = read_poses(path, "--poses")?;
             let near: Option<Vec<Vec<f64>>> = match req.near {
                 None => None,
                 Some(file) => {
@@ -568,6 +556,23 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
             "give one of --pose m00,…,m33 or --poses FILE.json".into(),
         )),
     }
+}
+
+/// A JSON file holding an array of 4×4 poses (arrays of 4 rows of 4 numbers), each
+/// checked as `--pose` is.
+pub fn read_poses(path: &std::path::Path, what: &str) -> Result<Vec<[[f64; 4]; 4]>, CliError> {
+    read_json(path, what)?
+        .as_array()
+        .ok_or_else(|| {
+            CliError::Usage(format!(
+                "{}: expected a JSON array of poses",
+                path.display()
+            ))
+        })?
+        .iter()
+        .enumerate()
+        .map(|(i, p)| pose_from(&numbers(p, 4, 4), &format!("{}: pose {i}", path.display())))
+        .collect()
 }
 
 fn read_json(path: &std::path::Path, what: &str) -> Result<Value, CliError> {

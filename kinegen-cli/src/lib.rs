@@ -6,6 +6,8 @@
 //! - `kinegen stats ROBOT [--json]`
 //! - `kinegen ik ROBOT --pose m00,…,m33 [--near q1,…] [--json]` or `--poses FILE.json
 //!   [--near FILE.json]` — every closed-form IK solution
+//! - `kinegen reach ROBOT [--resolution 0.08] [--orientations 50|DxR] [-o map.npz]
+//!   [--slices DIR]` — a reachability map; `--inverse TASK.json` — base placement
 //!
 //! ROBOT is a TOML file (`robots/ur5.toml`), a URDF file (`arm.urdf`, with `--base`,
 //! `--tip`, `--snap`; without them the root link and the only leaf) or the name of a
@@ -19,6 +21,7 @@ pub mod eval;
 pub mod formulas;
 pub mod ik;
 pub mod model;
+pub mod reach;
 pub mod robots;
 pub mod stats;
 
@@ -133,6 +136,61 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// A reachability map: every pose of every voxel solved in closed form, all
+    /// solutions; per voxel the reachability index, solutions within limits, the best
+    /// manipulability and each singular factor's smallest |value|. The `.npz` holds
+    /// `spheres` (V×4: x, y, z, reachability %, Reuleaux's sphere table), `poses` (P×10
+    /// f32: centre, position, quaternion x y z w of each reachable pose; Reuleaux's pose
+    /// table, with `--orientations 50`), `solutions_min`, `solutions_mean`,
+    /// `manipulability`, `factor_min` (V×K), `factor_names`, `resolution`, `box`, `dims`.
+    Reach {
+        /// A TOML or URDF file, or a shipped robot's name.
+        robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
+        /// Voxel spacing in metres (Reuleaux's default 0.08).
+        #[arg(long, default_value_t = 0.08, allow_hyphen_values = true)]
+        resolution: f64,
+        /// Poses per voxel: 50 (Reuleaux's, on a sphere of radius one voxel) or DxR (D
+        /// approach directions times R rolls about each, at the centre; 200x12 is the
+        /// Zacharias density).
+        #[arg(long, default_value = "50")]
+        orientations: String,
+        /// The box of voxel centres, `xmin,ymin,zmin,xmax,ymax,zmax` in metres (default:
+        /// Reuleaux's 3 m cube, ±1.5 m around the base).
+        #[arg(long = "box", allow_hyphen_values = true, value_delimiter = ',')]
+        bounds: Option<Vec<f64>>,
+        /// For a 7-joint arm: values of the locked joint tried per pose (evenly spaced
+        /// over its limits).
+        #[arg(long, default_value_t = 8)]
+        free_samples: usize,
+        /// Solve the voxels outside the arm's reach sphere too (the map is the same).
+        #[arg(long)]
+        no_skip: bool,
+        /// Worker threads (default: every core).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Write the map (`.npz`), or with --inverse the ranked bases (`.json`).
+        #[arg(short, long)]
+        output: Option<std::path::PathBuf>,
+        /// Write PNG slices of the map into this directory.
+        #[arg(long)]
+        slices: Option<std::path::PathBuf>,
+        /// Heights (m) of the xy slices, comma-separated (default: joint 1's shoulder).
+        #[arg(long, allow_hyphen_values = true, value_delimiter = ',')]
+        slice_z: Option<Vec<f64>>,
+        /// Base placement: a JSON array of the task's 4×4 poses; prints the base
+        /// positions on the plane --plane-z that reach all of them, best first.
+        #[arg(long)]
+        inverse: Option<std::path::PathBuf>,
+        /// The height of the plane the base stands on (--inverse).
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        plane_z: f64,
+        /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free.
+        #[arg(long)]
+        free: Option<usize>,
+    },
 }
 
 /// Run a parsed command; `Ok` is the text for stdout.
@@ -222,6 +280,41 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 json: *json,
             };
             ik::run(&chain, &derived, &request)
+        }
+        Command::Reach {
+            robot,
+            urdf,
+            resolution,
+            orientations,
+            bounds,
+            free_samples,
+            no_skip,
+            threads,
+            output,
+            slices,
+            slice_z,
+            inverse,
+            plane_z,
+            free,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
+            let options = with_free(options, &chain, *free)?;
+            let derived = derive(&chain, &options);
+            let request = reach::Request {
+                resolution: *resolution,
+                orientations: orientations.clone(),
+                bounds: bounds.clone(),
+                free_samples: *free_samples,
+                no_skip: *no_skip,
+                threads: *threads,
+                output: output.clone(),
+                slices: slices.clone(),
+                slice_z: slice_z.clone(),
+                inverse: inverse.clone(),
+                plane_z: *plane_z,
+                progress: true,
+            };
+            reach::run(&chain, &derived, &request)
         }
     }
 }

@@ -21,11 +21,12 @@ enum Op {
     Neg(u32, u32),
 }
 
-/// A joint angle's sine and cosine leaves: `sin_cos(sign·q[joint] + offset)`.
+/// A joint angle's sine and cosine leaves: `sin_cos(sign·q[joint] + offset)`, each
+/// only where an operation or output reads it.
 #[derive(Clone, Copy, Debug)]
 struct AngleLeaf {
-    sin: u32,
-    cos: u32,
+    sin: Option<u32>,
+    cos: Option<u32>,
     joint: usize,
     sign: f64,
     offset: f64,
@@ -91,8 +92,8 @@ impl Program {
                     sign,
                     offset,
                 } => angles.push(AngleLeaf {
-                    sin: s,
-                    cos: c,
+                    sin: Some(s),
+                    cos: Some(c),
                     joint: *joint,
                     sign: f64::from(*sign),
                     offset: chain.eval(offset),
@@ -145,10 +146,30 @@ impl Program {
             };
             register[id as usize] = Some(reg);
         }
-        let outputs = outputs
+        let outputs: Vec<u32> = outputs
             .iter()
             .map(|&id| register[id as usize].expect("every output placed"))
             .collect();
+        // Sines and cosines nothing reads are not computed (a measure reading q2..q5
+        // skips q1's and q6's).
+        let mut read = vec![false; initial.len()];
+        for op in &ops {
+            match *op {
+                Op::Add(_, a, b) | Op::Sub(_, a, b) | Op::Mul(_, a, b) => {
+                    read[a as usize] = true;
+                    read[b as usize] = true;
+                }
+                Op::Neg(_, a) => read[a as usize] = true,
+            }
+        }
+        for &o in &outputs {
+            read[o as usize] = true;
+        }
+        for a in &mut angles {
+            a.sin = a.sin.filter(|r| read[*r as usize]);
+            a.cos = a.cos.filter(|r| read[*r as usize]);
+        }
+        angles.retain(|a| a.sin.is_some() || a.cos.is_some());
         Program {
             initial,
             joints,
@@ -173,20 +194,39 @@ impl Program {
         self.ops.len()
     }
 
-    /// The outputs at `q` into `out`, using `registers` from [`Program::registers`].
+    /// The outputs at `q` into `out`, using `registers` from [`Program::registers`];
+    /// sines and cosines by `f64::sin` and `f64::cos`, as the graph walk takes them.
     ///
     /// # Panics
     /// If `registers` did not come from this program, `q` is shorter than the chain or
     /// `out` shorter than [`Program::outputs`].
     pub fn eval(&self, q: &[f64], registers: &mut [f64], out: &mut [f64]) {
+        self.eval_with(q, registers, out, |x| (x.sin(), x.cos()));
+    }
+
+    /// [`Program::eval`] with the joint angles' sines and cosines from `sin_cos` (the
+    /// generated code's `kinegen::math::sin_cos`, one argument reduction for both, is
+    /// faster than two calls of the platform's; values then differ from
+    /// [`Program::eval`]'s by rounding).
+    pub fn eval_with(
+        &self,
+        q: &[f64],
+        registers: &mut [f64],
+        out: &mut [f64],
+        sin_cos: impl Fn(f64) -> (f64, f64),
+    ) {
         let r = registers;
         for &(reg, j) in &self.joints {
             r[reg as usize] = q[j];
         }
         for a in &self.angles {
-            let x = a.sign * q[a.joint] + a.offset;
-            r[a.sin as usize] = x.sin();
-            r[a.cos as usize] = x.cos();
+            let (s, c) = sin_cos(a.sign * q[a.joint] + a.offset);
+            if let Some(reg) = a.sin {
+                r[reg as usize] = s;
+            }
+            if let Some(reg) = a.cos {
+                r[reg as usize] = c;
+            }
         }
         for op in &self.ops {
             match *op {
