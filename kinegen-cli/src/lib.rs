@@ -142,7 +142,9 @@ pub enum Command {
     /// `spheres` (V×4: x, y, z, reachability %, Reuleaux's sphere table), `poses` (P×10
     /// f32: centre, position, quaternion x y z w of each reachable pose; Reuleaux's pose
     /// table, with `--orientations 50`), `solutions_min`, `solutions_mean`,
-    /// `manipulability`, `factor_min` (V×K), `factor_names`, `resolution`, `box`, `dims`.
+    /// `manipulability`, `factor_min`, `factor_best` (V×K), `factor_names`,
+    /// `resolution`, `box`, `dims`; the `.h5` has Reuleaux's `/Spheres/sphere_dataset`
+    /// (with `Resolution`) and `/Poses/poses_dataset`, the rest in `/kinegen`.
     Reach {
         /// A TOML or URDF file, or a shipped robot's name.
         robot: String,
@@ -171,7 +173,8 @@ pub enum Command {
         /// Worker threads (default: every core).
         #[arg(long)]
         threads: Option<usize>,
-        /// Write the map (`.npz`), or with --inverse the ranked bases (`.json`).
+        /// Write the map (`.h5` in Reuleaux's layout, or `.npz`), or with --inverse the
+        /// ranked bases (`.json`).
         #[arg(short, long)]
         output: Option<std::path::PathBuf>,
         /// Write PNG slices of the map into this directory.

@@ -7,10 +7,12 @@
 //! - [`map`]: solving every pose, voxel by voxel, on all cores.
 //! - [`measures`]: each solution's manipulability and singular factors' values.
 //! - [`npz`]: the map as NumPy arrays.
+//! - [`hdf5`]: the map in Reuleaux's HDF5 layout.
 //! - [`slices`]: planes of the map as PNG pictures.
 //! - [`inverse`]: where to put the base so that every pose of a task is reachable.
 
 pub mod grid;
+pub mod hdf5;
 pub mod inverse;
 pub mod map;
 pub mod measures;
@@ -100,9 +102,14 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
     let mut report = map.summary();
     if let Some(path) = output {
         write_atomically(&path, |f| {
-            npz::write(f, &map.arrays())
-                .map(|_| ())
-                .map_err(|e| e.to_string())
+            if is_hdf5(&path) {
+                use std::io::Write;
+                f.write_all(&hdf5::bytes(&map)?).map_err(|e| e.to_string())
+            } else {
+                npz::write(f, &map.arrays())
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            }
         })?;
         let _ = writeln!(report, "map written to {}", path.display());
     }
@@ -118,24 +125,22 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
     Ok(report)
 }
 
-/// `path` if a map can be written there: an `.npz` in an existing directory (exit 2
-/// otherwise, before any work).
+fn is_hdf5(path: &Path) -> bool {
+    matches!(
+        path.extension().and_then(|e| e.to_str()),
+        Some("h5" | "hdf5")
+    )
+}
+
+/// `path` if a map can be written there: an `.npz` or `.h5` in an existing directory
+/// (exit 2 otherwise, before any work).
 fn check_output(path: &Path) -> Result<PathBuf, CliError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-    match ext {
-        "npz" => {}
-        "h5" | "hdf5" => {
-            return Err(CliError::Usage(format!(
-                "-o {}: HDF5 output is not built into kinegen yet; write .npz (numpy.load reads it; the arrays are listed in `kinegen reach --help`)",
-                path.display()
-            )))
-        }
-        _ => {
-            return Err(CliError::Usage(format!(
-                "-o {}: the map is written as .npz",
-                path.display()
-            )))
-        }
+    if !(ext == "npz" || is_hdf5(path)) {
+        return Err(CliError::Usage(format!(
+            "-o {}: the map is written as .npz (NumPy) or .h5 (Reuleaux's HDF5 layout)",
+            path.display()
+        )));
     }
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
