@@ -77,7 +77,7 @@ impl Measures {
     pub fn eval<'s>(&self, q: &[f64], s: &'s mut Scratch) -> (f64, &'s [f64]) {
         // A measure needs no last bit: the faster sine and cosine of generated code.
         self.program
-            .eval_with(q, &mut s.registers, &mut s.out, kinegen::math::sin_cos);
+            .eval_with(q, &mut s.registers, &mut s.out, kinegen::math::sin_cos_n);
         match self.manipulability {
             Manipulability::Det => (s.out[0].abs(), &s.out[1..]),
             Manipulability::Rows(rows, n) => {

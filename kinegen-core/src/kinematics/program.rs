@@ -201,31 +201,39 @@ impl Program {
     /// If `registers` did not come from this program, `q` is shorter than the chain or
     /// `out` shorter than [`Program::outputs`].
     pub fn eval(&self, q: &[f64], registers: &mut [f64], out: &mut [f64]) {
-        self.eval_with(q, registers, out, |x| (x.sin(), x.cos()));
+        self.eval_with(q, registers, out, |x| {
+            (x.map(f64::sin), x.map(f64::cos))
+        });
     }
 
-    /// [`Program::eval`] with the joint angles' sines and cosines from `sin_cos` (the
-    /// generated code's `kinegen::math::sin_cos`, one argument reduction for both, is
-    /// faster than two calls of the platform's; values then differ from
+    /// [`Program::eval`] with the joint angles' sines and cosines from `sin_cos`, four
+    /// angles a call (the generated code's `kinegen::math::sin_cos_n` takes them side
+    /// by side, faster than the platform's one by one; values then differ from
     /// [`Program::eval`]'s by rounding).
     pub fn eval_with(
         &self,
         q: &[f64],
         registers: &mut [f64],
         out: &mut [f64],
-        sin_cos: impl Fn(f64) -> (f64, f64),
+        sin_cos: impl Fn([f64; 4]) -> ([f64; 4], [f64; 4]),
     ) {
         let r = registers;
         for &(reg, j) in &self.joints {
             r[reg as usize] = q[j];
         }
-        for a in &self.angles {
-            let (s, c) = sin_cos(a.sign * q[a.joint] + a.offset);
-            if let Some(reg) = a.sin {
-                r[reg as usize] = s;
+        for chunk in self.angles.chunks(4) {
+            let mut x = [0.0; 4];
+            for (x, a) in x.iter_mut().zip(chunk) {
+                *x = a.sign * q[a.joint] + a.offset;
             }
-            if let Some(reg) = a.cos {
-                r[reg as usize] = c;
+            let (s, c) = sin_cos(x);
+            for (k, a) in chunk.iter().enumerate() {
+                if let Some(reg) = a.sin {
+                    r[reg as usize] = s[k];
+                }
+                if let Some(reg) = a.cos {
+                    r[reg as usize] = c[k];
+                }
             }
         }
         for op in &self.ops {
