@@ -7,6 +7,9 @@ use kinegen_core::{Chain, Derived};
 
 use crate::error::CliError;
 
+/// The most voxels a map may have.
+pub const MAX_VOXELS: usize = 10_000_000;
+
 /// Voxel centres on a regular grid: `min + i·resolution` along each axis, up to `max`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Grid {
@@ -43,14 +46,15 @@ impl Grid {
         }
         let voxels = dims.iter().try_fold(1usize, |a, &d| a.checked_mul(d));
         match voxels {
-            Some(v) if v <= 50_000_000 => Ok(Grid {
+            // Each voxel keeps its measures in memory (~100 bytes): 10 million is ~1 GB.
+            Some(v) if v <= MAX_VOXELS => Ok(Grid {
                 min,
                 max,
                 resolution,
                 dims,
             }),
             _ => Err(CliError::Usage(format!(
-                "--resolution {resolution}: {}×{}×{} voxels is more than 50 million; choose a coarser resolution or a smaller --box",
+                "--resolution {resolution}: {}×{}×{} voxels is more than 10 million; choose a coarser resolution or a smaller --box",
                 dims[0], dims[1], dims[2]
             ))),
         }
