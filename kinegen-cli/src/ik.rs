@@ -142,6 +142,39 @@ impl<'a> Solver<'a> {
         &self.revolute
     }
 
+    /// The last joint turns the tool about the tool's own z axis: the last joint is
+    /// revolute, its axis is the tool's z axis at q = 0 (direction `±1`, returned, and a
+    /// point of it, to 1e-12 of the arm's size) and its limits span a whole turn. Then a
+    /// pose turned by θ about its z axis has the same solutions with `q_N ± θ`.
+    pub fn tool_roll_joint(&self) -> Option<f64> {
+        let n = self.chain.dof();
+        let g = &self.geometry;
+        if n == 0 || g.prismatic[n - 1] {
+            return None;
+        }
+        let [lo, hi] = self.limits[n - 1];
+        if hi - lo < std::f64::consts::TAU {
+            return None;
+        }
+        let h = g.h[n - 1];
+        let z = [g.r_tool[0][2], g.r_tool[1][2], g.r_tool[2][2]];
+        let dot = h[0] * z[0] + h[1] * z[1] + h[2] * z[2];
+        let d = [0, 1, 2].map(|k| g.p_tool[k] - g.p[n - 1][k]);
+        let cross = [
+            d[1] * h[2] - d[2] * h[1],
+            d[2] * h[0] - d[0] * h[2],
+            d[0] * h[1] - d[1] * h[0],
+        ];
+        let size = 1.0
+            + g.p
+                .iter()
+                .chain([&g.p_tool])
+                .flatten()
+                .fold(0.0f64, |a, x| a.max(x.abs()));
+        let off = cross.iter().map(|x| x * x).sum::<f64>().sqrt();
+        ((dot.abs() - 1.0).abs() < 1e-12 && off < 1e-12 * size).then_some(dot.signum())
+    }
+
     /// The joint a 7-joint arm's closed form locks (0-based).
     pub fn locked_joint(&self) -> Option<usize> {
         self.plan.locked

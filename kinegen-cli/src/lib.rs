@@ -170,6 +170,11 @@ pub enum Command {
         /// Solve the voxels outside the arm's reach sphere too (the map is the same).
         #[arg(long)]
         no_skip: bool,
+        /// With DxR orientations: solve every roll, also where the last joint turns the
+        /// tool about its approach axis (by default one roll per direction then stands
+        /// for all: the same solutions with the last joint turned).
+        #[arg(long)]
+        every_roll: bool,
         /// Worker threads (default: every core).
         #[arg(long)]
         threads: Option<usize>,
@@ -292,6 +297,7 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             bounds,
             free_samples,
             no_skip,
+            every_roll,
             threads,
             output,
             slices,
@@ -309,6 +315,7 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 bounds: bounds.clone(),
                 free_samples: *free_samples,
                 no_skip: *no_skip,
+                every_roll: *every_roll,
                 threads: *threads,
                 output: output.clone(),
                 slices: slices.clone(),

@@ -21,6 +21,17 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 fn map_of(robot: &str, grid: Grid, orientations: Orientations, skip: bool, threads: usize) -> Map {
+    map_with(robot, grid, orientations, skip, threads, true)
+}
+
+fn map_with(
+    robot: &str,
+    grid: Grid,
+    orientations: Orientations,
+    skip: bool,
+    threads: usize,
+    roll_symmetry: bool,
+) -> Map {
     let (chain, options) = robots::load(robot, &UrdfArgs::default()).unwrap();
     let derived = derive(&chain, &options);
     let settings = Settings {
@@ -30,6 +41,7 @@ fn map_of(robot: &str, grid: Grid, orientations: Orientations, skip: bool, threa
         skip,
         threads: Some(threads),
         progress: false,
+        roll_symmetry,
     };
     map::compute(&chain, &derived, &settings).unwrap()
 }
@@ -187,6 +199,43 @@ fn skipping_and_threads_leave_the_map_unchanged() {
         buf.into_inner()
     };
     assert_eq!(bytes(&skipped), bytes(&solved));
+}
+
+/// Rolls about the approach axis solved once (the last joint turns the tool about it)
+/// give the map that solving every roll gives: the same reachable poses and solution
+/// counts, the same measures to rounding.
+#[test]
+fn shared_rolls_give_the_map_of_every_roll() {
+    let o = Orientations::Approach {
+        directions: 12,
+        rolls: 5,
+    };
+    for robot in ["ur5", "puma560"] {
+        let grid = || Grid::reuleaux(0.3).unwrap();
+        let shared = map_with(robot, grid(), o.clone(), true, 2, true);
+        let every = map_with(robot, grid(), o.clone(), true, 2, false);
+        assert_eq!(shared.rolls_shared, 5, "{robot}");
+        assert_eq!(every.rolls_shared, 1);
+        assert_eq!(shared.ik_calls * 5, every.ik_calls);
+        let mut reachable = 0;
+        for (a, b) in shared.voxels.iter().zip(&every.voxels) {
+            assert_eq!(
+                (a.reachable, a.solutions_min, a.solutions_sum, a.mask),
+                (b.reachable, b.solutions_min, b.solutions_sum, b.mask),
+                "{robot}"
+            );
+            reachable += a.reachable;
+            let close = |x: f64, y: f64| (x.is_nan() && y.is_nan()) || (x - y).abs() <= 1e-9;
+            assert!(close(a.manipulability, b.manipulability), "{robot}");
+            for (x, y) in a.factor_min.iter().zip(&b.factor_min) {
+                assert!(close(*x, *y), "{robot}");
+            }
+            for (x, y) in a.factor_best.iter().zip(&b.factor_best) {
+                assert!(close(*x, *y), "{robot}");
+            }
+        }
+        assert!(reachable > 1000, "{robot}: {reachable}");
+    }
 }
 
 /// The file as NumPy reads it: Reuleaux's sphere table (x, y, z, reachability) and pose

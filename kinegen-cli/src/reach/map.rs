@@ -33,6 +33,9 @@ pub struct Settings {
     pub threads: Option<usize>,
     /// Draw a progress bar (on a terminal only).
     pub progress: bool,
+    /// Solve one roll per approach direction where the rolls provably share their
+    /// solutions (see [`roll_symmetric`]); `false` solves every roll.
+    pub roll_symmetry: bool,
 }
 
 /// What one voxel's poses gave.
@@ -71,7 +74,8 @@ pub struct Map {
     pub factor_names: Vec<String>,
     /// Every voxel of the grid, in its order.
     pub voxels: Vec<Voxel>,
-    /// IK solves run (poses × locked-joint samples of the voxels not skipped).
+    /// IK solves run (poses × locked-joint samples of the voxels not skipped, one roll
+    /// of each approach direction where rolls share their solutions).
     pub ik_calls: u64,
     /// Wall time of the solving (s).
     pub seconds: f64,
@@ -81,6 +85,8 @@ pub struct Map {
     pub sphere: Option<ReachSphere>,
     /// The height of joint 1's frame origin at q = 0 (the shoulder of a DH table).
     pub shoulder: f64,
+    /// Rolls solved once for all ([`roll_symmetric`]); 1 when every pose was solved.
+    pub rolls_shared: usize,
 }
 
 /// Each thread's registers.
@@ -104,6 +110,15 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
     let measures = Measures::of(chain, derived);
     let locked_values = locked_values(&solver, settings.free_samples);
     let poses = settings.orientations.poses();
+    // Poses solved per group of rolls: 1 = every pose.
+    let rolls = match settings.orientations {
+        Orientations::Approach { rolls, .. }
+            if settings.roll_symmetry && roll_symmetric(&solver, &measures) =>
+        {
+            rolls
+        }
+        _ => 1,
+    };
     let spread = settings
         .orientations
         .offset_radius(settings.grid.resolution);
@@ -142,7 +157,7 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
         }
         let mut calls = 0;
         let mut best = vec![f64::NAN; k];
-        for (j, rel) in poses.iter().enumerate() {
+        for (j, rel) in poses.iter().enumerate().step_by(rolls) {
             let mut pose = [[0.0, 0.0, 0.0, 1.0]; 4];
             for r in 0..3 {
                 pose[r][..3].copy_from_slice(&rel.rotation[r]);
@@ -168,14 +183,15 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
                     *f = fmin(*f, *b);
                 }
             }
+            // The pose stands for itself and the `rolls − 1` rolls after it.
             if count > 0 {
-                v.reachable += 1;
-                if j < 64 {
-                    v.mask |= 1 << j;
+                v.reachable += rolls as u32;
+                for k in j..(j + rolls).min(64) {
+                    v.mask |= 1 << k;
                 }
             }
             v.solutions_min = v.solutions_min.min(count);
-            v.solutions_sum += count;
+            v.solutions_sum += count * rolls as u32;
         }
         Ok((v, calls))
     };
@@ -214,6 +230,7 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
         seconds,
         threads,
         sphere,
+        rolls_shared: rolls,
         shoulder: {
             let frame = &derived.model.frame_rows;
             let z = frame.first().map(|f| f[2][3]);
@@ -229,6 +246,19 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
             })
         },
     })
+}
+
+/// Rolls about the tool's z axis provably share their solutions: the last joint turns
+/// the tool about that axis over a whole turn ([`Solver::tool_roll_joint`]), so a pose
+/// rolled by θ is solved by the same `q1…q_{N−1}` with `q_N ± θ` — reachable alike, with
+/// as many solutions — and no measure reads `q_N` (world-frame manipulability and the
+/// determinant's factors do not depend on a roll of the tool about its own axis).
+pub fn roll_symmetric(solver: &Solver, measures: &Measures) -> bool {
+    let n = solver.chain().dof();
+    n > 0
+        && solver.tool_roll_joint().is_some()
+        && solver.locked_joint() != Some(n - 1)
+        && !measures.reads_joint(n - 1)
 }
 
 /// The values a 7-joint arm's locked joint takes: `samples` evenly spaced over its
@@ -327,6 +357,13 @@ impl Map {
             "{} IK calls in {:.3} s on {} threads: {:.0} per second per thread",
             self.ik_calls, self.seconds, self.threads, per_core
         );
+        if self.rolls_shared > 1 {
+            let _ = writeln!(
+                s,
+                "the last joint turns the tool about its approach axis: one solve stands for each direction's {} rolls (--every-roll solves them all)",
+                self.rolls_shared
+            );
+        }
         if !self.factor_names.is_empty() {
             let _ = writeln!(s, "singular factors: {}", self.factor_names.join(", "));
         }

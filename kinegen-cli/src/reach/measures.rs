@@ -65,6 +65,11 @@ impl Measures {
         }
     }
 
+    /// Whether a measure depends on joint `j`.
+    pub fn reads_joint(&self, j: usize) -> bool {
+        self.program.reads_joint(j)
+    }
+
     /// Registers for [`Measures::eval`].
     pub fn scratch(&self) -> Scratch {
         Scratch {
@@ -88,4 +93,3 @@ impl Measures {
         }
     }
 }
-

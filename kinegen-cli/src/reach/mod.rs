@@ -57,6 +57,8 @@ pub struct Request {
     pub plane_z: f64,
     /// Draw a progress bar on a terminal.
     pub progress: bool,
+    /// Solve every roll about the approach axis, even where they share solutions.
+    pub every_roll: bool,
 }
 
 /// `kinegen reach`: the report to print; files written as asked (none when it fails).
@@ -97,6 +99,7 @@ pub fn run(chain: &Chain, derived: &Derived, req: &Request) -> Result<String, Cl
         skip: !req.no_skip,
         threads: req.threads,
         progress: req.progress,
+        roll_symmetry: !req.every_roll,
     };
     let map = map::compute(chain, derived, &settings)?;
     let mut report = map.summary();

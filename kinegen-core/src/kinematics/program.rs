@@ -189,6 +189,11 @@ impl Program {
         self.outputs.len()
     }
 
+    /// Whether any output depends on joint `j` (its value, sine or cosine is read).
+    pub fn reads_joint(&self, j: usize) -> bool {
+        self.joints.iter().any(|&(_, k)| k == j) || self.angles.iter().any(|a| a.joint == j)
+    }
+
     /// How many operations one call runs.
     pub fn operations(&self) -> usize {
         self.ops.len()
@@ -201,9 +206,7 @@ impl Program {
     /// If `registers` did not come from this program, `q` is shorter than the chain or
     /// `out` shorter than [`Program::outputs`].
     pub fn eval(&self, q: &[f64], registers: &mut [f64], out: &mut [f64]) {
-        self.eval_with(q, registers, out, |x| {
-            (x.map(f64::sin), x.map(f64::cos))
-        });
+        self.eval_with(q, registers, out, |x| (x.map(f64::sin), x.map(f64::cos)));
     }
 
     /// [`Program::eval`] with the joint angles' sines and cosines from `sin_cos`, four
