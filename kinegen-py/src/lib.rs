@@ -22,7 +22,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
 create_exception!(
-    _kinegen,
+    kinegen,
     LoadError,
     PyException,
     "A robot file did not load: one line per problem, `file:line: path: message`."

@@ -124,6 +124,15 @@ def test_every_shipped_robot_loads_and_the_stub_lists_it(shipped):
         np.testing.assert_allclose(t[:3, :3] @ t[:3, :3].T, np.eye(3), atol=1e-12)
 
 
+def test_the_stub_declares_every_public_member():
+    stub = (pathlib.Path(kinegen.__file__).parent / "_kinegen.pyi").read_text()
+    members = [m for m in dir(kinegen.Robot) if not m.startswith("__")]
+    assert "fk" in members and "ik_near" in members
+    for m in members:
+        assert f"    def {m}(" in stub, m
+    assert "def robot_names(" in stub and "class LoadError(Exception)" in stub
+
+
 def test_properties(ur5, puma):
     assert ur5.name == "UR5" and puma.name == "PUMA 560"
     assert ur5.dof == 6
@@ -453,3 +462,23 @@ def test_no_closed_form_ik_is_a_value_error():
     assert r.ik_family is None
     with pytest.raises(ValueError, match="no closed-form inverse kinematics"):
         r.ik(np.eye(4))
+
+
+# ---------------------------------------------------------------------------------------
+# The example script
+
+
+def test_singularity_map_example_runs(tmp_path):
+    import subprocess
+    import sys
+
+    script = ROOT / "kinegen-py" / "examples" / "singularity_map.py"
+    out = subprocess.run(
+        [sys.executable, str(script), "--n", "40", "--out", str(tmp_path / "map.png")],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert "det J = a2*a3*sin(q3)*sin(q5)*" in out
+    assert "sin(q5) = 0" in out
+    assert ("wrote" in out and (tmp_path / "map.png").is_file()) or "matplotlib is optional" in out

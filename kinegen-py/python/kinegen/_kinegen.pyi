@@ -60,6 +60,9 @@ class Robot:
     def has_det(self) -> bool:
         """Whether the robot has a closed-form det J (a 6x6 Jacobian)."""
     @property
+    def det_factors(self) -> List[Tuple[str, int, List[int]]]:
+        """The factors of det J as (text, power, joints 1-based); empty without one."""
+    @property
     def ik_family(self) -> Optional[str]:
         """The closed-form IK family, or None."""
     @property
