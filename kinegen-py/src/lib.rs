@@ -8,6 +8,10 @@
 
 use std::sync::Arc;
 
+mod tape;
+
+use tape::Tape;
+
 use kinegen_cli::det_hook::{determinants, Determinants};
 use kinegen_cli::{eval, formulas, ik, robots, CliError, UrdfArgs, What};
 use kinegen_core::algebra::graph::Id;
@@ -34,10 +38,16 @@ struct Inner {
     options: Options,
     derived: Derived,
     dets: Determinants,
-    /// The nodes of fk's 3×4 rows, J's and J_ee's 6×N, row-major: one evaluation each.
+    /// The nodes of fk's 3×4 rows, J's and J_ee's 6×N, row-major (for `_reference`).
     fk_ids: Vec<Id>,
     jacobian_ids: Vec<Id>,
     jacobian_ee_ids: Vec<Id>,
+    /// The same outputs as tapes, and det J's and its factors' where it has them.
+    fk: Tape,
+    jacobian: Tape,
+    jacobian_ee: Tape,
+    det: Option<Tape>,
+    factors: Option<Tape>,
 }
 
 /// A robot with its closed-form kinematics (see the module's docs).
@@ -58,11 +68,24 @@ impl Robot {
         let derived = derive(&chain, &options);
         let dets = determinants(&chain, &derived);
         let m = &derived.model;
-        let fk_ids = m.fk_rows.iter().flatten().copied().collect();
-        let jacobian_ids = m.jacobian.iter().flatten().copied().collect();
-        let jacobian_ee_ids = m.jacobian_ee.iter().flatten().copied().collect();
+        let fk_ids: Vec<Id> = m.fk_rows.iter().flatten().copied().collect();
+        let jacobian_ids: Vec<Id> = m.jacobian.iter().flatten().copied().collect();
+        let jacobian_ee_ids: Vec<Id> = m.jacobian_ee.iter().flatten().copied().collect();
+        let factors = match &derived.det {
+            Some(Ok(d)) => Some(Tape::new(
+                m,
+                &chain,
+                &d.factors.iter().map(|f| f.node).collect::<Vec<_>>(),
+            )),
+            _ => None,
+        };
         Robot {
             inner: Arc::new(Inner {
+                fk: Tape::new(m, &chain, &fk_ids),
+                jacobian: Tape::new(m, &chain, &jacobian_ids),
+                jacobian_ee: Tape::new(m, &chain, &jacobian_ee_ids),
+                det: dets.det.as_ref().map(|d| Tape::new(m, &chain, &[d.node])),
+                factors,
                 fk_ids,
                 jacobian_ids,
                 jacobian_ee_ids,
@@ -152,15 +175,17 @@ impl Robot {
         f: F,
     ) -> PyResult<Bound<'py, PyAny>>
     where
-        F: Fn(&Inner, &[f64], &mut Vec<f64>) + Send + Sync,
+        F: Fn(&Inner, &[f64], &mut Vec<f64>, &mut Vec<f64>) + Send + Sync,
     {
         let n = self.dof();
         let b = read_batch(&q, &[n], "q")?;
         let inner = &*self.inner;
         let out = py.allow_threads(|| {
-            let mut out = Vec::new();
+            let size: usize = shape.iter().product();
+            let mut out = Vec::with_capacity(size * b.rows);
+            let mut regs = Vec::new();
             for row in b.data.chunks(n.max(1)).take(b.rows) {
-                f(inner, row, &mut out);
+                f(inner, row, &mut regs, &mut out);
             }
             out
         });
@@ -178,15 +203,10 @@ impl Robot {
     }
 }
 
-/// Values of the nodes `ids` at `q`, appended to `out`.
-fn eval_ids(inner: &Inner, q: &[f64], ids: &[Id], out: &mut Vec<f64>) {
-    out.extend(inner.derived.model.eval(&inner.chain, q, ids));
-}
-
-fn manipulability(inner: &Inner, q: &[f64]) -> f64 {
+fn manipulability(inner: &Inner, q: &[f64], regs: &mut Vec<f64>) -> f64 {
     let n = inner.chain.dof();
     let mut j = Vec::with_capacity(6 * n);
-    eval_ids(inner, q, &inner.jacobian_ids, &mut j);
+    inner.jacobian.eval(q, regs, &mut j);
     let m = nalgebra::DMatrix::from_row_slice(6, n, &j);
     kinegen_core::numeric::manipulability(&m)
 }
@@ -323,8 +343,8 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[4, 4], |inner, q, out| {
-            eval_ids(inner, q, &inner.fk_ids, out);
+        self.map_q(py, q, &[4, 4], |inner, q, regs, out| {
+            inner.fk.eval(q, regs, out);
             out.extend([0.0, 0.0, 0.0, 1.0]);
         })
     }
@@ -335,8 +355,8 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[6, self.dof()], |inner, q, out| {
-            eval_ids(inner, q, &inner.jacobian_ids, out)
+        self.map_q(py, q, &[6, self.dof()], |inner, q, regs, out| {
+            inner.jacobian.eval(q, regs, out)
         })
     }
 
@@ -346,8 +366,8 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[6, self.dof()], |inner, q, out| {
-            eval_ids(inner, q, &inner.jacobian_ee_ids, out)
+        self.map_q(py, q, &[6, self.dof()], |inner, q, regs, out| {
+            inner.jacobian_ee.eval(q, regs, out)
         })
     }
 
@@ -359,9 +379,9 @@ impl Robot {
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
         self.det_or_err()?;
-        self.map_q(py, q, &[], |inner, q, out| {
-            if let Some(d) = &inner.dets.det {
-                out.extend(inner.derived.model.eval(&inner.chain, q, &[d.node]));
+        self.map_q(py, q, &[], |inner, q, regs, out| {
+            if let Some(t) = &inner.det {
+                t.eval(q, regs, out);
             }
         })
     }
@@ -381,9 +401,10 @@ impl Robot {
             )));
         };
         let names: Vec<String> = det.factors.iter().map(|f| f.text.clone()).collect();
-        let ids: Vec<_> = det.factors.iter().map(|f| f.node).collect();
-        let values = self.map_q(py, q, &[ids.len()], move |inner, q, out| {
-            out.extend(inner.derived.model.eval(&inner.chain, q, &ids))
+        let values = self.map_q(py, q, &[names.len()], |inner, q, regs, out| {
+            if let Some(t) = &inner.factors {
+                t.eval(q, regs, out);
+            }
         })?;
         Ok((names, values))
     }
@@ -395,8 +416,8 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[], |inner, q, out| {
-            out.push(manipulability(inner, q))
+        self.map_q(py, q, &[], |inner, q, regs, out| {
+            out.push(manipulability(inner, q, regs))
         })
     }
 
@@ -407,7 +428,7 @@ impl Robot {
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let n = self.dof();
-        self.map_q(py, q, &[n, 6, n], |inner, q, out| {
+        self.map_q(py, q, &[n, 6, n], |inner, q, _, out| {
             let v = eval::values(&inner.chain, &inner.derived, &inner.dets, q, None);
             out.extend(v.second.hessian.iter().flatten().flatten());
         })
@@ -515,6 +536,27 @@ impl Robot {
         let q = to_array(py, values, Some(mask.len()), &[n])?;
         let mask = mask.into_pyarray(py).into_any();
         Ok(PyTuple::new(py, [q, mask])?.into_any())
+    }
+
+    /// fk, J or J_ee (`which`) at one configuration evaluated by walking the engine's
+    /// graph (`Model::eval`, as `kinegen eval`), flat: what the tests compare the
+    /// instruction lists of the other methods with.
+    fn _reference<'py>(
+        &self,
+        py: Python<'py>,
+        which: &str,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let i = &self.inner;
+        let ids = match which {
+            "fk" => &i.fk_ids,
+            "jacobian" => &i.jacobian_ids,
+            "jacobian_ee" => &i.jacobian_ee_ids,
+            _ => return Err(PyValueError::new_err(format!("which: `{which}`"))),
+        };
+        let b = read_batch(&q, &[self.dof()], "q")?;
+        let v = i.derived.model.eval(&i.chain, &b.data, ids);
+        to_array(py, v, None, &[ids.len()])
     }
 
     /// The IK family the engine chose, or None without a closed-form IK.
