@@ -23,7 +23,17 @@ start=$SECONDS
 stamp() { echo "kinegen-py/ci.sh: $1 ($((SECONDS - start)) s so far)"; }
 
 rm -rf "$venv" "$wheels"
-"$python" -m venv "$venv"
+if ! "$python" -m venv "$venv"; then
+    # Debian splits venv out of python3 (python3-venv); install it where we may.
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        rm -rf "$venv"
+        apt-get update -qq && apt-get install -y -qq python3-venv
+        "$python" -m venv "$venv"
+    else
+        echo "kinegen-py/ci.sh: $python -m venv failed (on Debian: apt-get install python3-venv)" >&2
+        exit 1
+    fi
+fi
 "$venv/bin/python" -m pip install --quiet --upgrade pip
 "$venv/bin/python" -m pip install --quiet maturin numpy pytest
 stamp "virtual environment ready"
