@@ -21,7 +21,7 @@ use kinegen_core::{derive, generate, Chain, Derived, ItemHeader, Options};
 use numpy::ndarray::ArrayViewD;
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn, PyArrayMethods};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::{PyException, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
@@ -63,8 +63,26 @@ fn to_py_err(e: CliError) -> PyErr {
     }
 }
 
+/// Run `f`, a panic inside the engine or the solvers becoming a `RuntimeError` (a bug to
+/// report) rather than PyO3's `PanicException`, which is not an `Exception`.
+fn guarded<T>(f: impl FnOnce() -> T) -> PyResult<T> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|e| {
+        let why = e
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| e.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        PyRuntimeError::new_err(format!("kinegen: internal error: {why}"))
+    })
+}
+
 impl Robot {
-    fn build(chain: Chain, options: Options) -> Robot {
+    /// Derive `chain` (the GIL released: the engine takes milliseconds to seconds).
+    fn build(py: Python<'_>, chain: Chain, options: Options) -> PyResult<Robot> {
+        py.allow_threads(|| guarded(|| Robot::derive(chain, options)))
+    }
+
+    fn derive(chain: Chain, options: Options) -> Robot {
         let derived = derive(&chain, &options);
         let dets = determinants(&chain, &derived);
         let m = &derived.model;
@@ -181,14 +199,16 @@ impl Robot {
         let b = read_batch(&q, &[n], "q")?;
         let inner = &*self.inner;
         let out = py.allow_threads(|| {
-            let size: usize = shape.iter().product();
-            let mut out = Vec::with_capacity(size * b.rows);
-            let mut regs = Vec::new();
-            for row in b.data.chunks(n.max(1)).take(b.rows) {
-                f(inner, row, &mut regs, &mut out);
-            }
-            out
-        });
+            guarded(|| {
+                let size: usize = shape.iter().product();
+                let mut out = Vec::with_capacity(size * b.rows);
+                let mut regs = Vec::new();
+                for row in b.data.chunks(n.max(1)).take(b.rows) {
+                    f(inner, row, &mut regs, &mut out);
+                }
+                out
+            })
+        })?;
         to_array(py, out, b.batch.then_some(b.rows), shape)
     }
 
@@ -219,6 +239,7 @@ impl Robot {
     #[staticmethod]
     #[pyo3(signature = (path, base=None, tip=None, snap=1e-4, symbolic=false))]
     fn from_urdf(
+        py: Python<'_>,
         path: std::path::PathBuf,
         base: Option<String>,
         tip: Option<String>,
@@ -238,15 +259,15 @@ impl Robot {
             symbolic,
         };
         let chain = robots::urdf_chain(&urdf, &args).map_err(to_py_err)?;
-        Ok(Robot::build(chain, Options::default()))
+        Robot::build(py, chain, Options::default())
     }
 
     /// A robot file in kinegen's TOML format (a DH table, or a file naming a URDF).
     #[staticmethod]
-    fn from_toml(path: std::path::PathBuf) -> PyResult<Robot> {
+    fn from_toml(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Robot> {
         let (d, options) =
             load_description_file(&path).map_err(|e| LoadError::new_err(e.to_string()))?;
-        Ok(Robot::build(d.chain(), options))
+        Robot::build(py, d.chain(), options)
     }
 
     /// A DH table: `rows` is a list of dicts with the TOML file's columns (`a`, `alpha`,
@@ -256,6 +277,7 @@ impl Robot {
     #[staticmethod]
     #[pyo3(signature = (rows, convention="standard", params=None, name="DH robot"))]
     fn from_dh(
+        py: Python<'_>,
         rows: &Bound<'_, PyAny>,
         convention: &str,
         params: Option<&Bound<'_, PyDict>>,
@@ -265,19 +287,19 @@ impl Robot {
         let no_urdf = |rel: &str| Err(format!("`{rel}`: from_dh reads no URDF"));
         let (d, options) = load_description_str(&src, "<from_dh>", &no_urdf)
             .map_err(|e| LoadError::new_err(e.to_string()))?;
-        Ok(Robot::build(d.chain(), options))
+        Robot::build(py, d.chain(), options)
     }
 
     /// Load a robot shipped with kinegen by name (`"ur5"`); see `kinegen.robots`.
     #[staticmethod]
-    fn shipped(name: &str) -> PyResult<Robot> {
+    fn shipped(py: Python<'_>, name: &str) -> PyResult<Robot> {
         if name.contains(['/', '\\', '.']) || std::path::Path::new(name).is_file() {
             return Err(PyValueError::new_err(format!(
                 "`{name}` is a path: use Robot.from_toml or Robot.from_urdf"
             )));
         }
         let (chain, options) = robots::load(name, &UrdfArgs::default()).map_err(to_py_err)?;
-        Ok(Robot::build(chain, options))
+        Robot::build(py, chain, options)
     }
 
     /// The robot's name.
@@ -452,13 +474,15 @@ impl Robot {
         }
         let inner = &*self.inner;
         let out = py.allow_threads(|| {
-            let mut out = Vec::with_capacity(6 * b.rows);
-            for (q, qd) in b.data.chunks(n).zip(r.data.chunks(n)) {
-                let v = eval::values(&inner.chain, &inner.derived, &inner.dets, q, Some(qd));
-                out.extend(v.second.jdot_qdot.unwrap_or_default());
-            }
-            out
-        });
+            guarded(|| {
+                let mut out = Vec::with_capacity(6 * b.rows);
+                for (q, qd) in b.data.chunks(n).zip(r.data.chunks(n)) {
+                    let v = eval::values(&inner.chain, &inner.derived, &inner.dets, q, Some(qd));
+                    out.extend(v.second.jdot_qdot.unwrap_or_default());
+                }
+                out
+            })
+        })?;
         to_array(py, out, b.batch.then_some(b.rows), &[6])
     }
 
@@ -478,13 +502,15 @@ impl Robot {
         let poses = read_poses(&pose)?;
         let inner = &*self.inner;
         let results = py.allow_threads(|| {
-            let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
-            poses
-                .poses
-                .iter()
-                .map(|p| solver.solve(*p, None, locked, None))
-                .collect::<Result<Vec<_>, _>>()
-        });
+            guarded(|| {
+                let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
+                poses
+                    .poses
+                    .iter()
+                    .map(|p| solver.solve(*p, None, locked, None))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+        })?;
         let results = results.map_err(to_py_err)?;
         ik_dict(py, &results, self.dof(), poses.batch)
     }
@@ -509,18 +535,20 @@ impl Robot {
         }
         let inner = &*self.inner;
         let found = py.allow_threads(|| {
-            let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
-            poses
-                .poses
-                .iter()
-                .zip(near.data.chunks(n))
-                .map(|(p, q)| {
-                    solver
-                        .solve(*p, Some(q), None, None)
-                        .map(|r| r.near.flatten())
-                })
-                .collect::<Result<Vec<_>, _>>()
-        });
+            guarded(|| {
+                let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
+                poses
+                    .poses
+                    .iter()
+                    .zip(near.data.chunks(n))
+                    .map(|(p, q)| {
+                        solver
+                            .solve(*p, Some(q), None, None)
+                            .map(|r| r.near.flatten())
+                    })
+                    .collect::<Result<Vec<_>, _>>()
+            })
+        })?;
         let found = found.map_err(to_py_err)?;
         if !poses.batch {
             return match &found[0] {
