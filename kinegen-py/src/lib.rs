@@ -1,0 +1,829 @@
+//! `kinegen` for Python: the engine's closed forms on NumPy arrays.
+//!
+//! A `Robot` holds what `kinegen eval` and `kinegen ik` work from (the chain and the
+//! engine's derivation); every method evaluates the very nodes the generated Rust is
+//! printed from (`Model::eval`) and solves IK through the runtime's solvers, by calling
+//! the `kinegen_cli` library rather than restating it. Batches loop in Rust with the GIL
+//! released. Bad input raises `ValueError`, a file that does not load `kinegen.LoadError`.
+
+use std::sync::Arc;
+
+mod tape;
+
+use tape::Tape;
+
+use kinegen_cli::det_hook::{determinants, Determinants};
+use kinegen_cli::{eval, formulas, ik, robots, CliError, UrdfArgs, What};
+use kinegen_core::algebra::graph::Id;
+use kinegen_core::front::toml_file::{load_description_file, load_description_str};
+use kinegen_core::front::urdf::Urdf;
+use kinegen_core::{derive, generate, Chain, Derived, ItemHeader, Options};
+use numpy::ndarray::ArrayViewD;
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn, PyArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyException, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+create_exception!(
+    kinegen,
+    LoadError,
+    PyException,
+    "A robot file did not load: one line per problem, `file:line: path: message`."
+);
+
+/// What a loaded robot keeps: the engine's input and results, derived once.
+struct Inner {
+    chain: Chain,
+    options: Options,
+    derived: Derived,
+    dets: Determinants,
+    /// The nodes of fk's 3×4 rows, J's and J_ee's 6×N, row-major (for `_reference`).
+    fk_ids: Vec<Id>,
+    jacobian_ids: Vec<Id>,
+    jacobian_ee_ids: Vec<Id>,
+    /// The same outputs as tapes, and det J's and its factors' where it has them.
+    fk: Tape,
+    jacobian: Tape,
+    jacobian_ee: Tape,
+    det: Option<Tape>,
+    factors: Option<Tape>,
+}
+
+/// A robot with its closed-form kinematics (see the module's docs).
+#[pyclass(module = "kinegen", frozen)]
+struct Robot {
+    inner: Arc<Inner>,
+}
+
+fn to_py_err(e: CliError) -> PyErr {
+    match e {
+        CliError::Load(e) => LoadError::new_err(e.to_string()),
+        CliError::Usage(m) => PyValueError::new_err(m),
+    }
+}
+
+/// Run `f`, a panic inside the engine or the solvers becoming a `RuntimeError` (a bug to
+/// report) rather than PyO3's `PanicException`, which is not an `Exception`.
+fn guarded<T>(f: impl FnOnce() -> T) -> PyResult<T> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|e| {
+        let why = e
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| e.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        PyRuntimeError::new_err(format!("kinegen: internal error: {why}"))
+    })
+}
+
+impl Robot {
+    /// Derive `chain` (the GIL released: the engine takes milliseconds to seconds).
+    fn build(py: Python<'_>, chain: Chain, options: Options) -> PyResult<Robot> {
+        py.allow_threads(|| guarded(|| Robot::derive(chain, options)))
+    }
+
+    fn derive(chain: Chain, options: Options) -> Robot {
+        let derived = derive(&chain, &options);
+        let dets = determinants(&chain, &derived);
+        let m = &derived.model;
+        let fk_ids: Vec<Id> = m.fk_rows.iter().flatten().copied().collect();
+        let jacobian_ids: Vec<Id> = m.jacobian.iter().flatten().copied().collect();
+        let jacobian_ee_ids: Vec<Id> = m.jacobian_ee.iter().flatten().copied().collect();
+        let factors = match &derived.det {
+            Some(Ok(d)) => Some(Tape::new(
+                m,
+                &chain,
+                &d.factors.iter().map(|f| f.node).collect::<Vec<_>>(),
+            )),
+            _ => None,
+        };
+        Robot {
+            inner: Arc::new(Inner {
+                fk: Tape::new(m, &chain, &fk_ids),
+                jacobian: Tape::new(m, &chain, &jacobian_ids),
+                jacobian_ee: Tape::new(m, &chain, &jacobian_ee_ids),
+                det: dets.det.as_ref().map(|d| Tape::new(m, &chain, &[d.node])),
+                factors,
+                fk_ids,
+                jacobian_ids,
+                jacobian_ee_ids,
+                chain,
+                options,
+                derived,
+                dets,
+            }),
+        }
+    }
+
+    fn dof(&self) -> usize {
+        self.inner.chain.dof()
+    }
+}
+
+/// Joint vectors read from a 1-D array of N or an (M, N) batch: the rows, flat, and
+/// whether it was a batch. Wrong shapes and non-finite values are `ValueError`s.
+struct Batch {
+    data: Vec<f64>,
+    rows: usize,
+    batch: bool,
+}
+
+/// Read `x` as one item of shape `item` or a batch of them (`(M, *item)`).
+fn read_batch(
+    x: &PyArrayLikeDyn<'_, f64, AllowTypeChange>,
+    item: &[usize],
+    what: &str,
+) -> PyResult<Batch> {
+    let view: ArrayViewD<'_, f64> = x.as_array();
+    let shape = view.shape();
+    let batch = if shape == item {
+        false
+    } else if shape.len() == item.len() + 1 && &shape[1..] == item {
+        true
+    } else {
+        let want = item
+            .iter()
+            .map(|d| d.to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
+        return Err(PyValueError::new_err(format!(
+            "{what}: expected shape ({want}) or (M, {want}), got {shape:?}"
+        )));
+    };
+    let rows = if batch { shape[0] } else { 1 };
+    let data: Vec<f64> = view.iter().copied().collect();
+    if let Some(i) = data.iter().position(|v| !v.is_finite()) {
+        let per: usize = item.iter().product::<usize>().max(1);
+        let at = if batch {
+            format!(" (row {})", i / per)
+        } else {
+            String::new()
+        };
+        return Err(PyValueError::new_err(format!(
+            "{what}: entry {} is not a finite number{at}",
+            i % per
+        )));
+    }
+    Ok(Batch { data, rows, batch })
+}
+
+/// An array of `shape` (with a leading M for a batch) from flat values.
+fn to_array<'py>(
+    py: Python<'py>,
+    values: Vec<f64>,
+    batch: Option<usize>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let mut full: Vec<usize> = batch.into_iter().collect();
+    full.extend_from_slice(shape);
+    if full.is_empty() {
+        return Ok(values[0].into_pyobject(py)?.into_any());
+    }
+    Ok(values.into_pyarray(py).reshape(full)?.into_any())
+}
+
+impl Robot {
+    /// Evaluate `f` (which writes `len` values from one joint vector) on every row of `q`,
+    /// the GIL released; the result has shape `shape`, `(M, *shape)` for a batch.
+    fn map_q<'py, F>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        shape: &[usize],
+        f: F,
+    ) -> PyResult<Bound<'py, PyAny>>
+    where
+        F: Fn(&Inner, &[f64], &mut Vec<f64>, &mut Vec<f64>) + Send + Sync,
+    {
+        let n = self.dof();
+        let b = read_batch(&q, &[n], "q")?;
+        let inner = &*self.inner;
+        let out = py.allow_threads(|| {
+            guarded(|| {
+                let size: usize = shape.iter().product();
+                let mut out = Vec::with_capacity(size * b.rows);
+                let mut regs = Vec::new();
+                for row in b.data.chunks(n.max(1)).take(b.rows) {
+                    f(inner, row, &mut regs, &mut out);
+                }
+                out
+            })
+        })?;
+        to_array(py, out, b.batch.then_some(b.rows), shape)
+    }
+
+    fn det_or_err(&self) -> PyResult<()> {
+        match self.inner.dets.det {
+            Some(_) => Ok(()),
+            None => Err(PyValueError::new_err(format!(
+                "`{}`: det J {}",
+                self.inner.chain.name, self.inner.dets.missing
+            ))),
+        }
+    }
+}
+
+fn manipulability(inner: &Inner, q: &[f64], regs: &mut Vec<f64>) -> f64 {
+    let n = inner.chain.dof();
+    let mut j = Vec::with_capacity(6 * n);
+    inner.jacobian.eval(q, regs, &mut j);
+    let m = nalgebra::DMatrix::from_row_slice(6, n, &j);
+    kinegen_core::numeric::manipulability(&m)
+}
+
+#[pymethods]
+impl Robot {
+    /// A chain of a URDF file: from `base` (default: the root link) to `tip` (default:
+    /// the only leaf); angles within `snap` rad of a multiple of pi/12 and lengths within
+    /// `snap` m of 0 are taken exact (0 keeps every decimal); `symbolic` names every length.
+    #[staticmethod]
+    #[pyo3(signature = (path, base=None, tip=None, snap=1e-4, symbolic=false))]
+    fn from_urdf(
+        py: Python<'_>,
+        path: std::path::PathBuf,
+        base: Option<String>,
+        tip: Option<String>,
+        snap: f64,
+        symbolic: bool,
+    ) -> PyResult<Robot> {
+        if !snap.is_finite() || snap < 0.0 {
+            return Err(PyValueError::new_err(format!(
+                "snap: expected a finite number >= 0, got {snap}"
+            )));
+        }
+        let urdf = Urdf::load_file(&path).map_err(|e| LoadError::new_err(e.to_string()))?;
+        let args = UrdfArgs {
+            base,
+            tip,
+            snap: Some(snap),
+            symbolic,
+        };
+        let chain = robots::urdf_chain(&urdf, &args).map_err(to_py_err)?;
+        Robot::build(py, chain, Options::default())
+    }
+
+    /// A robot file in kinegen's TOML format (a DH table, or a file naming a URDF).
+    #[staticmethod]
+    fn from_toml(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Robot> {
+        let (d, options) =
+            load_description_file(&path).map_err(|e| LoadError::new_err(e.to_string()))?;
+        Robot::build(py, d.chain(), options)
+    }
+
+    /// A DH table: `rows` is a list of dicts with the TOML file's columns (`a`, `alpha`,
+    /// `d`, `theta`, `offset`, `limits`, `flip`, and `type` = "revolute" (default) or
+    /// "prismatic"), or of tuples `(a, alpha, d)` / `(a, alpha, d, offset)` of revolute
+    /// joints. Values are numbers or expressions (`"pi/2"`, a name of `params`).
+    #[staticmethod]
+    #[pyo3(signature = (rows, convention="standard", params=None, name="DH robot"))]
+    fn from_dh(
+        py: Python<'_>,
+        rows: &Bound<'_, PyAny>,
+        convention: &str,
+        params: Option<&Bound<'_, PyDict>>,
+        name: &str,
+    ) -> PyResult<Robot> {
+        let src = dh_toml(rows, convention, params, name)?;
+        let no_urdf = |rel: &str| Err(format!("`{rel}`: from_dh reads no URDF"));
+        let (d, options) = load_description_str(&src, "<from_dh>", &no_urdf)
+            .map_err(|e| LoadError::new_err(e.to_string()))?;
+        Robot::build(py, d.chain(), options)
+    }
+
+    /// Load a robot shipped with kinegen by name (`"ur5"`); see `kinegen.robots`.
+    #[staticmethod]
+    fn shipped(py: Python<'_>, name: &str) -> PyResult<Robot> {
+        if name.contains(['/', '\\', '.']) || std::path::Path::new(name).is_file() {
+            return Err(PyValueError::new_err(format!(
+                "`{name}` is a path: use Robot.from_toml or Robot.from_urdf"
+            )));
+        }
+        let (chain, options) = robots::load(name, &UrdfArgs::default()).map_err(to_py_err)?;
+        Robot::build(py, chain, options)
+    }
+
+    /// The robot's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.chain.name.clone()
+    }
+
+    /// Number of joints.
+    #[getter(dof)]
+    fn py_dof(&self) -> usize {
+        self.dof()
+    }
+
+    /// Joint names, base to tip.
+    #[getter]
+    fn joint_names(&self) -> Vec<String> {
+        self.inner
+            .chain
+            .links
+            .iter()
+            .map(|l| l.name.clone())
+            .collect()
+    }
+
+    /// Joint limits, an (N, 2) array of `[min, max]` (±inf where the robot has none).
+    #[getter]
+    fn limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = self
+            .inner
+            .chain
+            .links
+            .iter()
+            .flat_map(|l| l.limits.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]))
+            .collect();
+        to_array(py, v, None, &[self.dof(), 2])
+    }
+
+    /// Whether the robot has a closed-form det J (a square 6×6 Jacobian).
+    #[getter]
+    fn has_det(&self) -> bool {
+        self.inner.dets.det.is_some()
+    }
+
+    /// The factors of det J (or, for a robot with square task rows, of the task
+    /// Jacobian's det) as `(text, power, joints)` (joints 1-based): the determinant is a
+    /// constant times the product of `factor ** power`. Empty without a closed form.
+    #[getter]
+    fn det_factors(&self) -> Vec<(String, u32, Vec<usize>)> {
+        match &self.inner.derived.det {
+            Some(Ok(d)) => d
+                .factors
+                .iter()
+                .map(|f| (f.text.clone(), f.power, f.joints.clone()))
+                .collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// Tool pose: (4, 4), or (M, 4, 4) for an (M, N) batch of joint vectors.
+    fn fk<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.map_q(py, q, &[4, 4], |inner, q, regs, out| {
+            inner.fk.eval(q, regs, out);
+            out.extend([0.0, 0.0, 0.0, 1.0]);
+        })
+    }
+
+    /// Geometric Jacobian in the world frame, rows `[vx vy vz wx wy wz]`: (6, N) or (M, 6, N).
+    fn jacobian<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.map_q(py, q, &[6, self.dof()], |inner, q, regs, out| {
+            inner.jacobian.eval(q, regs, out)
+        })
+    }
+
+    /// Geometric Jacobian in the tool frame: (6, N) or (M, 6, N).
+    fn jacobian_ee<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.map_q(py, q, &[6, self.dof()], |inner, q, regs, out| {
+            inner.jacobian_ee.eval(q, regs, out)
+        })
+    }
+
+    /// det J from its closed form: a float, or an (M,) array. `ValueError` for a robot
+    /// without one (see `has_det`).
+    fn jacobian_det<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.det_or_err()?;
+        self.map_q(py, q, &[], |inner, q, regs, out| {
+            if let Some(t) = &inner.det {
+                t.eval(q, regs, out);
+            }
+        })
+    }
+
+    /// The factors of `det_factors` at `q`: `(names, values)`, values (K,) or (M, K). The
+    /// Jacobian (or the square task Jacobian) is singular where one of them is zero.
+    /// `ValueError` for a robot without a closed-form determinant.
+    fn singular_factors<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<(Vec<String>, Bound<'py, PyAny>)> {
+        let Some(Ok(det)) = &self.inner.derived.det else {
+            return Err(PyValueError::new_err(format!(
+                "`{}`: no closed-form determinant: {}",
+                self.inner.chain.name, self.inner.dets.missing
+            )));
+        };
+        let names: Vec<String> = det.factors.iter().map(|f| f.text.clone()).collect();
+        let values = self.map_q(py, q, &[names.len()], |inner, q, regs, out| {
+            if let Some(t) = &inner.factors {
+                t.eval(q, regs, out);
+            }
+        })?;
+        Ok((names, values))
+    }
+
+    /// Yoshikawa's manipulability `sqrt(det(J J^T))` of the 6×N world Jacobian (0 for
+    /// N < 6): a float or an (M,) array.
+    fn manipulability<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.map_q(py, q, &[], |inner, q, regs, out| {
+            out.push(manipulability(inner, q, regs))
+        })
+    }
+
+    /// `H[k] = dJ/dq_k` of the world Jacobian: (N, 6, N) or (M, N, 6, N).
+    fn hessian<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.dof();
+        self.map_q(py, q, &[n, 6, n], |inner, q, _, out| {
+            let v = eval::values(&inner.chain, &inner.derived, &inner.dets, q, None);
+            out.extend(v.second.hessian.iter().flatten().flatten());
+        })
+    }
+
+    /// `dJ/dt qd` (the acceleration term of `xdd = J qdd + Jdot qd`): (6,) or (M, 6);
+    /// `q` and `qd` of the same shape.
+    fn jdot_qdot<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        qd: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.dof();
+        let b = read_batch(&q, &[n], "q")?;
+        let r = read_batch(&qd, &[n], "qd")?;
+        if (b.rows, b.batch) != (r.rows, r.batch) {
+            return Err(PyValueError::new_err(
+                "qd: expected the shape of q (one joint rate per joint value)",
+            ));
+        }
+        let inner = &*self.inner;
+        let out = py.allow_threads(|| {
+            guarded(|| {
+                let mut out = Vec::with_capacity(6 * b.rows);
+                for (q, qd) in b.data.chunks(n).zip(r.data.chunks(n)) {
+                    let v = eval::values(&inner.chain, &inner.derived, &inner.dets, q, Some(qd));
+                    out.extend(v.second.jdot_qdot.unwrap_or_default());
+                }
+                out
+            })
+        })?;
+        to_array(py, out, b.batch.then_some(b.rows), &[6])
+    }
+
+    /// Every closed-form IK solution of `pose` (4×4) or of each pose of an (M, 4, 4)
+    /// batch; `locked` is the locked joint's value of a 7-joint arm. Returns a dict:
+    /// `q` (K, N) (a batch: (M, K, N), padded with NaN), `valid` (mask of real entries),
+    /// `exact` (solves the pose; else the least-squares nearest), `singular` (a factor
+    /// of det J vanishes), `within_limits`, `residual` (max |fk(q) - pose|), and for one
+    /// pose `singular_factors` (names of the vanishing factors of each solution).
+    #[pyo3(signature = (pose, locked=None))]
+    fn ik<'py>(
+        &self,
+        py: Python<'py>,
+        pose: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        locked: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let poses = read_poses(&pose)?;
+        let inner = &*self.inner;
+        let results = py.allow_threads(|| {
+            guarded(|| {
+                let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
+                poses
+                    .poses
+                    .iter()
+                    .map(|p| solver.solve(*p, None, locked, None))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+        })?;
+        let results = results.map_err(to_py_err)?;
+        ik_dict(py, &results, self.dof(), poses.batch)
+    }
+
+    /// The exact IK solution nearest to the configuration `q` (whole turns of revolute
+    /// joints chosen nearest to it within the limits), as the generated `ik_near`: an
+    /// array of N, or None when the pose is out of reach. A batch of (M, 4, 4) poses and
+    /// (M, N) configurations gives `(q (M, N) with NaN rows, found (M,) mask)`.
+    fn ik_near<'py>(
+        &self,
+        py: Python<'py>,
+        pose: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.dof();
+        let poses = read_poses(&pose)?;
+        let near = read_batch(&q, &[n], "q")?;
+        if (near.rows, near.batch) != (poses.poses.len(), poses.batch) {
+            return Err(PyValueError::new_err(
+                "q: expected one configuration per pose ((N,) with a 4×4 pose, (M, N) with (M, 4, 4))",
+            ));
+        }
+        let inner = &*self.inner;
+        let found = py.allow_threads(|| {
+            guarded(|| {
+                let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
+                poses
+                    .poses
+                    .iter()
+                    .zip(near.data.chunks(n))
+                    .map(|(p, q)| {
+                        solver
+                            .solve(*p, Some(q), None, None)
+                            .map(|r| r.near.flatten())
+                    })
+                    .collect::<Result<Vec<_>, _>>()
+            })
+        })?;
+        let found = found.map_err(to_py_err)?;
+        if !poses.batch {
+            return match &found[0] {
+                Some(q) => to_array(py, q.clone(), None, &[n]),
+                None => Ok(py.None().into_bound(py)),
+            };
+        }
+        let mask: Vec<bool> = found.iter().map(Option::is_some).collect();
+        let values: Vec<f64> = found
+            .into_iter()
+            .flat_map(|q| q.unwrap_or_else(|| vec![f64::NAN; n]))
+            .collect();
+        let q = to_array(py, values, Some(mask.len()), &[n])?;
+        let mask = mask.into_pyarray(py).into_any();
+        Ok(PyTuple::new(py, [q, mask])?.into_any())
+    }
+
+    /// fk, J or J_ee (`which`) at one configuration evaluated by walking the engine's
+    /// graph (`Model::eval`, as `kinegen eval`), flat: what the tests compare the
+    /// instruction lists of the other methods with.
+    fn _reference<'py>(
+        &self,
+        py: Python<'py>,
+        which: &str,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let i = &self.inner;
+        let ids = match which {
+            "fk" => &i.fk_ids,
+            "jacobian" => &i.jacobian_ids,
+            "jacobian_ee" => &i.jacobian_ee_ids,
+            _ => return Err(PyValueError::new_err(format!("which: `{which}`"))),
+        };
+        let b = read_batch(&q, &[self.dof()], "q")?;
+        let v = i.derived.model.eval(&i.chain, &b.data, ids);
+        to_array(py, v, None, &[ids.len()])
+    }
+
+    /// The IK family the engine chose, or None without a closed-form IK.
+    #[getter]
+    fn ik_family(&self) -> Option<String> {
+        ik::Solver::new(&self.inner.chain, &self.inner.derived)
+            .ok()
+            .map(|s| s.family().to_string())
+    }
+
+    /// det J as `kinegen show --what det` prints it (the factored closed form).
+    #[getter]
+    fn det(&self) -> String {
+        self.show(What::Det, false)
+    }
+
+    /// The closed forms as a LaTeX document body (amsmath `align*`), as
+    /// `kinegen show --latex` prints it; `what` is one of "fk", "jacobian", "det",
+    /// "singularities", "all".
+    #[pyo3(signature = (what="all"))]
+    fn latex(&self, what: &str) -> PyResult<String> {
+        let w = match what {
+            "fk" => What::Fk,
+            "jacobian" => What::Jacobian,
+            "det" => What::Det,
+            "singularities" => What::Singularities,
+            "all" => What::All,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "what: expected fk, jacobian, det, singularities or all, got `{what}`"
+                )))
+            }
+        };
+        Ok(self.show(w, true))
+    }
+
+    /// The Rust code `kinematics!` generates for the robot, as `kinegen rust` prints it.
+    fn rust(&self) -> String {
+        let i = &self.inner;
+        generate(&i.chain, &ItemHeader::public(&i.chain.name), &i.options).pretty()
+    }
+
+    /// det J in LaTeX for Jupyter (the robot's name where it has none).
+    fn _repr_latex_(&self) -> String {
+        match &self.inner.dets.det {
+            Some(d) => format!("$\\det J = {}$", d.latex),
+            None => format!("$\\text{{{}}}$", self.inner.chain.name),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<kinegen.Robot {:?}: {} joints>",
+            self.inner.chain.name,
+            self.dof()
+        )
+    }
+}
+
+impl Robot {
+    fn show(&self, what: What, latex: bool) -> String {
+        let i = &self.inner;
+        formulas::show(&i.chain, &i.derived.model, &i.dets, what, latex)
+    }
+}
+
+/// Poses read from a (4, 4) array or an (M, 4, 4) batch, each checked as the CLI checks
+/// `--pose` (finite, last row 0 0 0 1, a rotation).
+struct Poses {
+    poses: Vec<[[f64; 4]; 4]>,
+    batch: bool,
+}
+
+fn read_poses(x: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Poses> {
+    let b = read_batch(x, &[4, 4], "pose")?;
+    let poses = b
+        .data
+        .chunks(16)
+        .enumerate()
+        .map(|(i, p)| {
+            let what = if b.batch {
+                format!("pose {i}")
+            } else {
+                "pose".into()
+            };
+            ik::pose_from(p, &what).map_err(to_py_err)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok(Poses {
+        poses,
+        batch: b.batch,
+    })
+}
+
+/// The dict `Robot.ik` returns.
+fn ik_dict<'py>(
+    py: Python<'py>,
+    results: &[ik::PoseResult],
+    n: usize,
+    batch: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let k = results.iter().map(|r| r.branches.len()).max().unwrap_or(0);
+    let k = if batch { k } else { results[0].branches.len() };
+    let m = results.len();
+    let mut q = vec![f64::NAN; m * k * n];
+    let mut residual = vec![f64::NAN; m * k];
+    let (mut valid, mut exact, mut singular, mut within) = (
+        vec![false; m * k],
+        vec![false; m * k],
+        vec![false; m * k],
+        vec![false; m * k],
+    );
+    for (i, r) in results.iter().enumerate() {
+        for (j, b) in r.branches.iter().enumerate() {
+            let at = i * k + j;
+            q[at * n..(at + 1) * n].copy_from_slice(&b.q);
+            residual[at] = r.residuals[j];
+            valid[at] = true;
+            exact[at] = b.exact;
+            singular[at] = b.at_singularity || !r.singular[j].is_empty();
+            within[at] = b.within_limits;
+        }
+    }
+    let lead: Vec<usize> = if batch { vec![m, k] } else { vec![k] };
+    let mask = |v: Vec<bool>| -> PyResult<Bound<'py, PyAny>> {
+        Ok(v.into_pyarray(py).reshape(lead.clone())?.into_any())
+    };
+    let d = PyDict::new(py);
+    let mut q_shape = lead.clone();
+    q_shape.push(n);
+    d.set_item("q", q.into_pyarray(py).reshape(q_shape)?)?;
+    d.set_item("valid", mask(valid)?)?;
+    d.set_item("exact", mask(exact)?)?;
+    d.set_item("singular", mask(singular)?)?;
+    d.set_item("within_limits", mask(within)?)?;
+    d.set_item("residual", residual.into_pyarray(py).reshape(lead.clone())?)?;
+    if !batch {
+        d.set_item("singular_factors", PyList::new(py, &results[0].singular)?)?;
+    }
+    Ok(d)
+}
+
+/// The TOML text of a DH table given to `Robot.from_dh`.
+fn dh_toml(
+    rows: &Bound<'_, PyAny>,
+    convention: &str,
+    params: Option<&Bound<'_, PyDict>>,
+    name: &str,
+) -> PyResult<String> {
+    use toml::{Table, Value};
+    let value = |x: &Bound<'_, PyAny>, what: &str| -> PyResult<Value> {
+        if let Ok(b) = x.extract::<bool>() {
+            return Ok(Value::Boolean(b));
+        }
+        if let Ok(s) = x.extract::<String>() {
+            return Ok(Value::String(s));
+        }
+        if let Ok(v) = x.extract::<f64>() {
+            if !v.is_finite() {
+                return Err(PyValueError::new_err(format!(
+                    "{what}: {v} is not a finite number"
+                )));
+            }
+            return Ok(Value::Float(v));
+        }
+        if let Ok(l) = x.extract::<Vec<Bound<'_, PyAny>>>() {
+            let items = l
+                .iter()
+                .map(|i| match i.extract::<String>() {
+                    Ok(s) => Ok(Value::String(s)),
+                    Err(_) => i.extract::<f64>().map(Value::Float).map_err(|_| {
+                        PyValueError::new_err(format!("{what}: expected numbers or strings"))
+                    }),
+                })
+                .collect::<PyResult<Vec<_>>>()?;
+            return Ok(Value::Array(items));
+        }
+        Err(PyValueError::new_err(format!(
+            "{what}: expected a number, a string or a list, got {}",
+            x.get_type().name()?
+        )))
+    };
+    let mut top = Table::new();
+    top.insert("name".into(), Value::String(name.into()));
+    top.insert("convention".into(), Value::String(convention.into()));
+    if let Some(p) = params {
+        let mut t = Table::new();
+        for (k, v) in p.iter() {
+            let k: String = k.extract()?;
+            let what = format!("params[{k:?}]");
+            t.insert(k, value(&v, &what)?);
+        }
+        top.insert("params".into(), Value::Table(t));
+    }
+    let mut joints = Vec::new();
+    for (i, row) in rows.try_iter()?.enumerate() {
+        let row = row?;
+        let mut t = Table::new();
+        if let Ok(d) = row.downcast::<PyDict>() {
+            t.insert("type".into(), Value::String("revolute".into()));
+            for (k, v) in d.iter() {
+                let k: String = k.extract()?;
+                let what = format!("rows[{i}][{k:?}]");
+                t.insert(k, value(&v, &what)?);
+            }
+        } else {
+            let cells: Vec<Bound<'_, PyAny>> = row.extract().map_err(|_| {
+                PyValueError::new_err(format!(
+                    "rows[{i}]: expected a dict of columns or a tuple (a, alpha, d[, offset])"
+                ))
+            })?;
+            if !(3..=4).contains(&cells.len()) {
+                return Err(PyValueError::new_err(format!(
+                    "rows[{i}]: a tuple row is (a, alpha, d) or (a, alpha, d, offset), got {} values",
+                    cells.len()
+                )));
+            }
+            t.insert("type".into(), Value::String("revolute".into()));
+            for (c, key) in cells.iter().zip(["a", "alpha", "d", "offset"]) {
+                t.insert(key.into(), value(c, &format!("rows[{i}].{key}"))?);
+            }
+        }
+        joints.push(Value::Table(t));
+    }
+    top.insert("joints".into(), Value::Array(joints));
+    toml::to_string(&top).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// Names of the robots shipped with kinegen (`kinegen.robots`).
+#[pyfunction]
+fn robot_names() -> Vec<&'static str> {
+    robots::names().collect()
+}
+
+/// The native part of the `kinegen` package.
+#[pymodule]
+fn _kinegen(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Robot>()?;
+    m.add("LoadError", m.py().get_type::<LoadError>())?;
+    m.add_function(wrap_pyfunction!(robot_names, m)?)?;
+    Ok(())
+}
