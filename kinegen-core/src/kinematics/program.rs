@@ -184,6 +184,13 @@ impl Program {
         self.initial.clone()
     }
 
+    /// Reset `registers` (any `Vec`, e.g. shared by several programs) to this program's
+    /// starting values, reusing its allocation.
+    pub fn registers_into(&self, registers: &mut Vec<f64>) {
+        registers.clear();
+        registers.extend_from_slice(&self.initial);
+    }
+
     /// How many values [`Program::eval`] writes.
     pub fn outputs(&self) -> usize {
         self.outputs.len()
