@@ -118,7 +118,7 @@ impl<'a> Solver<'a> {
         })
     }
 
-    /// Registers for [`Solver::solve_with`].
+    /// Registers for [`Solver::branches`] and [`Solver::factor_values`].
     pub fn scratch(&self) -> Scratch {
         Scratch {
             fk: self.fk.registers(),

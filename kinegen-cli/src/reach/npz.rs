@@ -92,7 +92,7 @@ pub fn write<W: Write + std::io::Seek>(
     zip.finish()
 }
 
-/// The arrays of an `.npz` that [`write`] wrote, by name (for tests and tools reading
+/// The arrays of an `.npz` that [`write()`] wrote, by name (for tests and tools reading
 /// a map back).
 pub fn read<R: Read + std::io::Seek>(r: R) -> Result<Vec<(String, Array)>, String> {
     let mut zip = zip::ZipArchive::new(r).map_err(|e| e.to_string())?;
