@@ -137,24 +137,19 @@ impl<'a> Solver<'a> {
         &self.limits
     }
 
-    /// Which joints are revolute.
-    pub fn revolute(&self) -> &[bool] {
-        &self.revolute
-    }
-
     /// The last joint turns the tool about the tool's own z axis: the last joint is
-    /// revolute, its axis is the tool's z axis at q = 0 (direction `±1`, returned, and a
+    /// revolute, its axis is the tool's z axis at q = 0 (either direction, through a
     /// point of it, to 1e-12 of the arm's size) and its limits span a whole turn. Then a
     /// pose turned by θ about its z axis has the same solutions with `q_N ± θ`.
-    pub fn tool_roll_joint(&self) -> Option<f64> {
+    pub fn tool_rolls(&self) -> bool {
         let n = self.chain.dof();
         let g = &self.geometry;
         if n == 0 || g.prismatic[n - 1] {
-            return None;
+            return false;
         }
         let [lo, hi] = self.limits[n - 1];
         if hi - lo < std::f64::consts::TAU {
-            return None;
+            return false;
         }
         let h = g.h[n - 1];
         let z = [g.r_tool[0][2], g.r_tool[1][2], g.r_tool[2][2]];
@@ -172,7 +167,7 @@ impl<'a> Solver<'a> {
                 .flatten()
                 .fold(0.0f64, |a, x| a.max(x.abs()));
         let off = cross.iter().map(|x| x * x).sum::<f64>().sqrt();
-        ((dot.abs() - 1.0).abs() < 1e-12 && off < 1e-12 * size).then_some(dot.signum())
+        (dot.abs() - 1.0).abs() < 1e-12 && off < 1e-12 * size
     }
 
     /// The joint a 7-joint arm's closed form locks (0-based).
@@ -273,7 +268,7 @@ impl<'a> Solver<'a> {
         let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
         let free_joint = match arm_angle {
             None => match self.plan.locked {
-                Some(k) => Some((k + 1, self.q_locked((locked, near), None)?)),
+                Some(k) => Some((k + 1, self.q_locked(locked, near, None)?)),
                 None => None,
             },
             Some(_) => None,
@@ -292,15 +287,16 @@ impl<'a> Solver<'a> {
     /// configuration's (0 without a locked joint or with an arm angle).
     fn q_locked(
         &self,
-        given: (Option<f64>, Option<&[f64]>),
+        locked: Option<f64>,
+        near: Option<&[f64]>,
         arm_angle: Option<f64>,
     ) -> Result<f64, CliError> {
-        Ok(match (self.plan.locked, given) {
+        Ok(match (self.plan.locked, locked, near) {
             _ if arm_angle.is_some() => 0.0,
-            (None, _) => 0.0,
-            (Some(_), (Some(x), _)) => x,
-            (Some(k), (None, Some(q))) => q[k],
-            (Some(k), (None, None)) => {
+            (None, _, _) => 0.0,
+            (Some(_), Some(x), _) => x,
+            (Some(k), None, Some(q)) => q[k],
+            (Some(k), None, None) => {
                 return Err(CliError::Usage(format!(
                 "`{}` locks joint {} for its closed form: give its value with --locked, or --near",
                 self.chain.name,
@@ -334,7 +330,7 @@ impl<'a> Solver<'a> {
                 ));
             }
         }
-        let q_locked = self.q_locked((locked, near), arm_angle)?;
+        let q_locked = self.q_locked(locked, near, arm_angle)?;
         let zeros = vec![0.0; n];
         let free = near.unwrap_or(&zeros);
         let residual = |q: &[f64]| self.residual(q, &pose, &mut scratch.borrow_mut());

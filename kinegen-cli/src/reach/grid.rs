@@ -26,11 +26,7 @@ pub struct Grid {
 impl Grid {
     /// The grid of `[min, max]` at `resolution`, or why not (exit 2).
     pub fn new(min: [f64; 3], max: [f64; 3], resolution: f64) -> Result<Grid, CliError> {
-        if !(resolution.is_finite() && resolution > 0.0) {
-            return Err(CliError::Usage(format!(
-                "--resolution {resolution}: must be a positive number of metres"
-            )));
-        }
+        check_resolution(resolution)?;
         let mut dims = [0; 3];
         for k in 0..3 {
             if !(min[k].is_finite() && max[k].is_finite() && min[k] <= max[k]) {
@@ -84,6 +80,17 @@ impl Grid {
             c[k] = self.min[k] + idx[k] as f64 * self.resolution;
         }
         c
+    }
+}
+
+/// `--resolution` (a spacing of voxels or of base positions): a positive number.
+pub fn check_resolution(resolution: f64) -> Result<(), CliError> {
+    if resolution.is_finite() && resolution > 0.0 {
+        Ok(())
+    } else {
+        Err(CliError::Usage(format!(
+            "--resolution {resolution}: must be a positive number of metres"
+        )))
     }
 }
 

@@ -15,7 +15,7 @@ use kinegen_core::{Chain, Derived};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
-use super::grid::ReachSphere;
+use super::grid::{check_resolution, ReachSphere};
 use super::map::{locked_values, solutions, Worker};
 use super::measures::Measures;
 use super::Request;
@@ -44,11 +44,7 @@ pub fn placements(
     free_samples: usize,
     threads: Option<usize>,
 ) -> Result<Vec<Placement>, CliError> {
-    if !(step.is_finite() && step > 0.0) {
-        return Err(CliError::Usage(format!(
-            "--resolution {step}: must be a positive number of metres"
-        )));
-    }
+    check_resolution(step)?;
     let solver = Solver::new(chain, derived)?;
     let measures = Measures::of(chain, derived);
     let locked = locked_values(&solver, free_samples);
@@ -71,14 +67,7 @@ pub fn placements(
             cells[0], cells[1]
         )));
     }
-    let pool = {
-        let mut b = rayon::ThreadPoolBuilder::new();
-        if let Some(t) = threads {
-            b = b.num_threads(t);
-        }
-        b.build()
-            .map_err(|e| CliError::Usage(format!("--threads: {e}")))?
-    };
+    let pool = super::pool(threads)?;
     let found: Result<Vec<Option<Placement>>, CliError> = pool.install(|| {
         (0..cells[0] * cells[1])
             .into_par_iter()

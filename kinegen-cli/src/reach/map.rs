@@ -171,20 +171,19 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
                 for q in solutions(&solver, pose, locked, &w.ik)? {
                     count += 1;
                     let (m, values) = measures.eval(&q, &mut w.measures);
-                    v.manipulability = fmax(v.manipulability, m);
+                    // `f64::max`/`min` skip a NaN operand: NaN is "none yet".
+                    v.manipulability = v.manipulability.max(m);
                     for ((f, b), x) in v.factor_min.iter_mut().zip(best.iter_mut()).zip(values) {
-                        *f = fmin(*f, x.abs());
-                        *b = fmax(*b, x.abs());
+                        *f = f.min(x.abs());
+                        *b = b.max(x.abs());
                     }
-                }
-            }
-            if count > 0 {
-                for (f, b) in v.factor_best.iter_mut().zip(&best) {
-                    *f = fmin(*f, *b);
                 }
             }
             // The pose stands for itself and the `rolls − 1` rolls after it.
             if count > 0 {
+                for (f, b) in v.factor_best.iter_mut().zip(&best) {
+                    *f = f.min(*b);
+                }
                 v.reachable += rolls as u32;
                 for k in j..(j + rolls).min(64) {
                     v.mask |= 1 << k;
@@ -197,14 +196,7 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
     };
 
     let start = Instant::now();
-    let pool = {
-        let mut b = rayon::ThreadPoolBuilder::new();
-        if let Some(t) = settings.threads {
-            b = b.num_threads(t);
-        }
-        b.build()
-            .map_err(|e| CliError::Usage(format!("--threads: {e}")))?
-    };
+    let pool = super::pool(settings.threads)?;
     let threads = pool.current_num_threads();
     let results: Result<Vec<(Voxel, u64)>, CliError> = pool.install(|| {
         (0..grid.len())
@@ -249,14 +241,14 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
 }
 
 /// Rolls about the tool's z axis provably share their solutions: the last joint turns
-/// the tool about that axis over a whole turn ([`Solver::tool_roll_joint`]), so a pose
+/// the tool about that axis over a whole turn ([`Solver::tool_rolls`]), so a pose
 /// rolled by θ is solved by the same `q1…q_{N−1}` with `q_N ± θ` — reachable alike, with
 /// as many solutions — and no measure reads `q_N` (world-frame manipulability and the
 /// determinant's factors do not depend on a roll of the tool about its own axis).
 pub fn roll_symmetric(solver: &Solver, measures: &Measures) -> bool {
     let n = solver.chain().dof();
     n > 0
-        && solver.tool_roll_joint().is_some()
+        && solver.tool_rolls()
         && solver.locked_joint() != Some(n - 1)
         && !measures.reads_joint(n - 1)
 }
@@ -292,24 +284,6 @@ pub(super) fn solutions(
         .into_iter()
         .filter(|b| b.exact && b.within_limits)
         .map(|b| b.q))
-}
-
-/// Larger of two, NaN meaning "none yet".
-fn fmax(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b > a {
-        b
-    } else {
-        a
-    }
-}
-
-/// Smaller of two, NaN meaning "none yet".
-fn fmin(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b < a {
-        b
-    } else {
-        a
-    }
 }
 
 impl Map {

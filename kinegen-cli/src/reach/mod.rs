@@ -135,6 +135,16 @@ fn is_hdf5(path: &Path) -> bool {
     )
 }
 
+/// The worker threads of a map or a placement (`None`: one per core).
+fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        b = b.num_threads(t);
+    }
+    b.build()
+        .map_err(|e| CliError::Usage(format!("--threads: {e}")))
+}
+
 /// `path` if a map can be written there: an `.npz` or `.h5` in an existing directory
 /// (exit 2 otherwise, before any work).
 fn check_output(path: &Path) -> Result<PathBuf, CliError> {

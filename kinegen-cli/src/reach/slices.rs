@@ -59,38 +59,40 @@ pub fn draw(map: &Map, dir: &Path, heights: &[f64]) -> Result<Vec<PathBuf>, CliE
         let i = ((at - g.min[axis]) / g.resolution).round();
         (i.max(0.0) as usize).min(g.dims[axis] - 1)
     };
+    // The xy planes at the heights, then the xz plane through the base: (fixed axis, at).
+    let planes: Vec<(usize, f64)> = heights.iter().map(|&z| (2, z)).chain([(1, 0.0)]).collect();
     let mut files = Vec::new();
     for m in &measures {
-        for &z in heights {
-            let kz = plane(2, z);
-            let z_at = g.min[2] + kz as f64 * g.resolution;
-            let path = dir.join(format!("{}_{}_xy_z{:+.3}.png", map.robot, m.slug, z_at));
-            let cells = |ix: usize, iy: usize| (m.value)(ix + g.dims[0] * (iy + g.dims[1] * kz));
+        for &(axis, at) in &planes {
+            let k = plane(axis, at);
+            let at = g.min[axis] + k as f64 * g.resolution;
+            // The picture's vertical axis: y on an xy plane, z on the xz plane.
+            let (up, name, fixed) = if axis == 2 {
+                (1, "xy", "z")
+            } else {
+                (2, "xz", "y")
+            };
+            let path = dir.join(format!(
+                "{}_{}_{name}_{fixed}{at:+.3}.png",
+                map.robot, m.slug
+            ));
+            let cells = |i: usize, j: usize| {
+                let mut c = [i, 0, 0];
+                c[up] = j;
+                c[axis] = k;
+                (m.value)(c[0] + g.dims[0] * (c[1] + g.dims[1] * c[2]))
+            };
             picture(
                 &path,
                 font,
-                &format!("{} — {}, z = {z_at:.3} m", map.robot, m.title),
-                ("x (m)", "y (m)"),
-                [(g.min[0], g.dims[0]), (g.min[1], g.dims[1])],
+                &format!("{} — {}, {fixed} = {at:.3} m", map.robot, m.title),
+                ("x (m)", ["x (m)", "y (m)", "z (m)"][up]),
+                [(g.min[0], g.dims[0]), (g.min[up], g.dims[up])],
                 g.resolution,
                 &cells,
             )?;
             files.push(path);
         }
-        let ky = plane(1, 0.0);
-        let y_at = g.min[1] + ky as f64 * g.resolution;
-        let path = dir.join(format!("{}_{}_xz_y{:+.3}.png", map.robot, m.slug, y_at));
-        let cells = |ix: usize, iz: usize| (m.value)(ix + g.dims[0] * (ky + g.dims[1] * iz));
-        picture(
-            &path,
-            font,
-            &format!("{} — {}, y = {y_at:.3} m", map.robot, m.title),
-            ("x (m)", "z (m)"),
-            [(g.min[0], g.dims[0]), (g.min[2], g.dims[2])],
-            g.resolution,
-            &cells,
-        )?;
-        files.push(path);
     }
     Ok(files)
 }
