@@ -590,9 +590,10 @@ impl Robot {
     /// The IK family the engine chose, or None without a closed-form IK.
     #[getter]
     fn ik_family(&self) -> Option<String> {
-        ik::Solver::new(&self.inner.chain, &self.inner.derived)
-            .ok()
-            .map(|s| s.family().to_string())
+        // The derived IK model's name (what `Solver::family` returns), without building
+        // a solver and its programs for it.
+        let ik = self.inner.derived.ik.as_ref().ok()?;
+        Some(ik.plan.name.clone())
     }
 
     /// det J as `kinegen show --what det` prints it (the factored closed form).
