@@ -5,7 +5,7 @@ use std::fmt;
 use kinegen_core::front::toml_file::LoadError;
 
 /// Why a command did not run.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub enum CliError {
     /// The robot file did not load (`file:line: path: message`, one line per problem).
     Load(LoadError),

@@ -9,6 +9,7 @@ use kinegen::ik::dispatch::{
     solve, solve_arm_angle, Checks, DynBranch, DynGeometry, DynPlan, DynProblem,
 };
 use kinegen::ik::families::WristPair;
+use kinegen::ik::geometry::Pose;
 use kinegen_core::kinematics::ik::family::Family;
 use kinegen_core::kinematics::ik::IkModel;
 use kinegen_core::kinematics::program::Program;
@@ -35,11 +36,14 @@ pub struct PoseResult {
     pub arm_angle: Option<f64>,
 }
 
-/// What the CLI needs to solve poses of one robot.
-pub struct Solver<'a> {
-    chain: &'a Chain,
-    derived: &'a Derived,
-    ik: &'a IkModel,
+/// What the CLI needs to solve poses of one robot. It owns what it reads (a copy of the
+/// chain and of the IK model), so a caller can keep one beside the robot it was built from
+/// and solve pose after pose without building it again.
+pub struct Solver {
+    chain: Chain,
+    ik: IkModel,
+    /// `sin(q5) = 0`: the determinant's singular factors, in its order.
+    factor_names: Vec<String>,
     plan: DynPlan,
     geometry: DynGeometry,
     revolute: Vec<bool>,
@@ -48,6 +52,10 @@ pub struct Solver<'a> {
     fk: Program,
     /// The determinant's singular factors (none without a closed-form determinant).
     factors: Program,
+    /// Both at once, sharing their sines and cosines: what each solution reports.
+    fk_and_factors: Program,
+    /// The task rows a planar, position or SCARA-like arm solves (`None`: the pose).
+    task_rows: Option<Vec<usize>>,
 }
 
 /// Registers of a [`Solver`]'s programs: one per thread, reused from pose to pose.
@@ -55,12 +63,13 @@ pub struct Solver<'a> {
 pub struct Scratch {
     fk: Vec<f64>,
     factors: Vec<f64>,
+    fk_and_factors: Vec<f64>,
     values: Vec<f64>,
 }
 
-impl<'a> Solver<'a> {
+impl Solver {
     /// The solver of `chain`, or why it has none (exit 2).
-    pub fn new(chain: &'a Chain, derived: &'a Derived) -> Result<Self, CliError> {
+    pub fn new(chain: &Chain, derived: &Derived) -> Result<Self, CliError> {
         let ik = match &derived.ik {
             Ok(ik) => ik,
             Err(why) => {
@@ -73,10 +82,15 @@ impl<'a> Solver<'a> {
         let v = ik.values(chain);
         let model = &derived.model;
         let fk_ids: Vec<_> = model.fk_rows.iter().flatten().copied().collect();
-        let factor_ids: Vec<_> = match &derived.det {
-            Some(Ok(det)) => det.factors.iter().map(|f| f.node).collect(),
-            _ => Vec::new(),
+        let (factor_ids, factor_names): (Vec<_>, Vec<_>) = match &derived.det {
+            Some(Ok(det)) => det
+                .factors
+                .iter()
+                .map(|f| (f.node, format!("{} = 0", f.text)))
+                .unzip(),
+            _ => (Vec::new(), Vec::new()),
         };
+        let both: Vec<_> = fk_ids.iter().chain(&factor_ids).copied().collect();
         let (revolute_joints, prismatic) = match &ik.plan.family {
             Family::Planar {
                 revolute,
@@ -85,9 +99,9 @@ impl<'a> Solver<'a> {
             _ => (Vec::new(), None),
         };
         Ok(Solver {
-            chain,
-            derived,
-            ik,
+            chain: chain.clone(),
+            ik: ik.clone(),
+            factor_names,
             plan: DynPlan {
                 solver: ik.plan.family.solver().into(),
                 revolute: revolute_joints,
@@ -115,6 +129,14 @@ impl<'a> Solver<'a> {
                 .collect(),
             fk: Program::new(&model.sym, chain, &fk_ids),
             factors: Program::new(&model.sym, chain, &factor_ids),
+            fk_and_factors: Program::new(&model.sym, chain, &both),
+            task_rows: match ik.plan.family {
+                Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => chain
+                    .task
+                    .as_ref()
+                    .map(|t| t.iter().map(|r| r.index()).collect()),
+                _ => None,
+            },
         })
     }
 
@@ -123,13 +145,14 @@ impl<'a> Solver<'a> {
         Scratch {
             fk: self.fk.registers(),
             factors: self.factors.registers(),
-            values: vec![0.0; self.fk.outputs().max(self.factors.outputs())],
+            fk_and_factors: self.fk_and_factors.registers(),
+            values: vec![0.0; self.fk_and_factors.outputs()],
         }
     }
 
     /// The chain solved.
     pub fn chain(&self) -> &Chain {
-        self.chain
+        &self.chain
     }
 
     /// Joint limits (unlimited joints: ±∞).
@@ -213,39 +236,63 @@ impl<'a> Solver<'a> {
         bits
     }
 
-    /// The names of the singular factors that vanish at `q`.
-    fn vanishing(&self, q: &[f64], s: &mut Scratch) -> Vec<String> {
-        let Some(Ok(det)) = &self.derived.det else {
-            return Vec::new();
-        };
-        let bits = self.vanishing_bits(q, s);
-        det.factors
+    /// The names of the singular factors set in `bits` (`sin(q5) = 0`).
+    fn names(&self, bits: u32) -> Vec<String> {
+        self.factor_names
             .iter()
             .enumerate()
             .filter(|(i, _)| bits & (1 << (*i).min(31)) != 0)
-            .map(|(_, f)| format!("{} = 0", f.text))
+            .map(|(_, f)| f.clone())
             .collect()
     }
 
     /// The task rows a planar arm solves (`None`: the whole pose).
-    fn task_rows(&self) -> Option<Vec<usize>> {
-        match self.ik.plan.family {
-            Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => self
-                .chain
-                .task
-                .as_ref()
-                .map(|t| t.iter().map(|r| r.index()).collect()),
-            _ => None,
+    fn task_rows(&self) -> Option<&[usize]> {
+        self.task_rows.as_deref()
+    }
+
+    /// `max |fk(q) − pose|` over the rows the arm solves, from the tool pose `t`.
+    fn miss(&self, t: &[[f64; 4]; 4], pose: &Pose) -> f64 {
+        match self.task_rows() {
+            None => kinegen::ik::solutions::residual(t, pose),
+            Some(rows) => kinegen::ik::solutions::task_residual(t, pose, rows),
         }
     }
 
-    fn residual(&self, q: &[f64], pose: &[[f64; 4]; 4], s: &mut Scratch) -> f64 {
+    fn residual(&self, q: &[f64], pose: &Pose, s: &mut Scratch) -> f64 {
         let t = self.fk(q, s);
-        let p = kinegen::ik::geometry::Pose::from_matrix(pose);
-        match self.task_rows() {
-            None => kinegen::ik::solutions::residual(&t, &p),
-            Some(rows) => kinegen::ik::solutions::task_residual(&t, &p, &rows),
+        self.miss(&t, pose)
+    }
+
+    /// What every solution reports: its residual (with `residual`; else NaN) and the bits
+    /// of its vanishing singular factors. One evaluation of fk and the factors together
+    /// shares their sines and cosines; both take them four at a time, as the generated
+    /// code does.
+    fn measure(&self, q: &[f64], pose: &Pose, residual: bool, s: &mut Scratch) -> (f64, u32) {
+        let sin_cos = kinegen::math::sin_cos_n;
+        let (program, regs) = if residual {
+            (&self.fk_and_factors, &mut s.fk_and_factors)
+        } else {
+            (&self.factors, &mut s.factors)
+        };
+        program.eval_with(q, regs, &mut s.values, sin_cos);
+        let v = &s.values[..program.outputs()];
+        let (miss, factors) = if residual {
+            let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+            for (i, row) in t.iter_mut().take(3).enumerate() {
+                row.copy_from_slice(&v[4 * i..4 * i + 4]);
+            }
+            (self.miss(&t, pose), &v[12..])
+        } else {
+            (f64::NAN, v)
+        };
+        let mut bits = 0;
+        for (i, f) in factors.iter().enumerate() {
+            if f.abs() <= kinegen::ik::solutions::SINGULAR_TOLERANCE {
+                bits |= 1 << i.min(31);
+            }
         }
+        (miss, bits)
     }
 
     /// Every solution of `pose`; with `near`, also the nearest to it (its free joints
@@ -258,13 +305,29 @@ impl<'a> Solver<'a> {
         arm_angle: Option<f64>,
     ) -> Result<PoseResult, CliError> {
         let scratch = std::cell::RefCell::new(self.scratch());
-        let branches = self.branches(pose, near, locked, arm_angle, &scratch)?;
+        self.solve_with(pose, near, locked, arm_angle, true, &scratch)
+    }
+
+    /// [`Solver::solve`] with `scratch`'s registers (from [`Solver::scratch`]), for a
+    /// caller solving many poses; without `residuals`, the residuals are NaN (not
+    /// measured: a check of fk per solution costs more than the solving).
+    pub fn solve_with(
+        &self,
+        pose: [[f64; 4]; 4],
+        near: Option<&[f64]>,
+        locked: Option<f64>,
+        arm_angle: Option<f64>,
+        residuals: bool,
+        scratch: &std::cell::RefCell<Scratch>,
+    ) -> Result<PoseResult, CliError> {
+        let branches = self.branches(pose, near, locked, arm_angle, scratch)?;
         let s = &mut *scratch.borrow_mut();
-        let residuals = branches
+        let target = Pose::from_matrix(&pose);
+        let (residuals, bits): (Vec<f64>, Vec<u32>) = branches
             .iter()
-            .map(|b| self.residual(&b.q, &pose, s))
-            .collect();
-        let singular = branches.iter().map(|b| self.vanishing(&b.q, s)).collect();
+            .map(|b| self.measure(&b.q, &target, residuals, s))
+            .unzip();
+        let singular = bits.into_iter().map(|b| self.names(b)).collect();
         let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
         let free_joint = match arm_angle {
             None => match self.plan.locked {
@@ -333,7 +396,8 @@ impl<'a> Solver<'a> {
         let q_locked = self.q_locked(locked, near, arm_angle)?;
         let zeros = vec![0.0; n];
         let free = near.unwrap_or(&zeros);
-        let residual = |q: &[f64]| self.residual(q, &pose, &mut scratch.borrow_mut());
+        let target = Pose::from_matrix(&pose);
+        let residual = |q: &[f64]| self.residual(q, &target, &mut scratch.borrow_mut());
         let singular = |q: &[f64]| self.vanishing_bits(q, &mut scratch.borrow_mut());
         let checks = Checks {
             residual: &residual,
