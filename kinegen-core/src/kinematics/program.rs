@@ -260,6 +260,67 @@ impl Program {
     }
 }
 
+/// Joint vectors [`Program::eval_lanes`] takes side by side.
+pub const LANES: usize = 4;
+
+impl Program {
+    /// Registers for [`Program::eval_lanes`]: [`Program::registers`] in every lane.
+    pub fn lane_registers(&self) -> Vec<[f64; LANES]> {
+        self.initial.iter().map(|&v| [v; LANES]).collect()
+    }
+
+    /// [`Program::eval_with`] on [`LANES`] joint vectors at once, for batches: each
+    /// operation is decoded once for all of them, and one `sin_cos` call takes one
+    /// angle of every vector. Lane `l` of `out[k]` is output `k` of `q[l]`, with the bits
+    /// `eval_with` gives for `q[l]` alone when `sin_cos` works lane by lane (as
+    /// `kinegen::math::sin_cos_n` does). Pad a short batch by repeating a vector.
+    ///
+    /// # Panics
+    /// If `registers` did not come from [`Program::lane_registers`], a `q` is shorter
+    /// than the chain or `out` is shorter than [`Program::outputs`].
+    pub fn eval_lanes(
+        &self,
+        q: [&[f64]; LANES],
+        registers: &mut [[f64; LANES]],
+        out: &mut [[f64; LANES]],
+        sin_cos: impl Fn([f64; 4]) -> ([f64; 4], [f64; 4]),
+    ) {
+        let r = registers;
+        for &(reg, j) in &self.joints {
+            r[reg as usize] = core::array::from_fn(|l| q[l][j]);
+        }
+        for a in &self.angles {
+            let (s, c) = sin_cos(core::array::from_fn(|l| a.sign * q[l][a.joint] + a.offset));
+            if let Some(reg) = a.sin {
+                r[reg as usize] = s;
+            }
+            if let Some(reg) = a.cos {
+                r[reg as usize] = c;
+            }
+        }
+        let lanes = |x: [f64; LANES], y: [f64; LANES], f: fn(f64, f64) -> f64| -> [f64; LANES] {
+            core::array::from_fn(|l| f(x[l], y[l]))
+        };
+        for op in &self.ops {
+            match *op {
+                Op::Add(d, a, b) => {
+                    r[d as usize] = lanes(r[a as usize], r[b as usize], |x, y| x + y)
+                }
+                Op::Sub(d, a, b) => {
+                    r[d as usize] = lanes(r[a as usize], r[b as usize], |x, y| x - y)
+                }
+                Op::Mul(d, a, b) => {
+                    r[d as usize] = lanes(r[a as usize], r[b as usize], |x, y| x * y)
+                }
+                Op::Neg(d, a) => r[d as usize] = r[a as usize].map(|x| -x),
+            }
+        }
+        for (o, &reg) in out.iter_mut().zip(&self.outputs) {
+            *o = r[reg as usize];
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -293,6 +354,42 @@ mod tests {
                 let walked = m.eval(&chain, &q, &ids);
                 for (a, b) in out.iter().zip(&walked) {
                     assert_eq!(a.to_bits(), b.to_bits(), "{file} at {q:?}");
+                }
+            }
+        }
+    }
+
+    /// Four vectors side by side give each vector's bits of `eval_with` (with a sin_cos
+    /// that works lane by lane, as the runtime's does).
+    #[test]
+    fn lanes_give_each_vectors_bits() {
+        let sin_cos = |x: [f64; 4]| (x.map(f64::sin), x.map(f64::cos));
+        for file in ["ur5", "stanford", "panda"] {
+            let path = format!("{}/../robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+            let (robot, options) = load_description_file(path.as_ref()).unwrap();
+            let chain = robot.chain();
+            let derived = derive(&chain, &options);
+            let m = &derived.model;
+            let mut ids: Vec<Id> = m.fk_rows.iter().flatten().copied().collect();
+            ids.extend(m.jacobian_ee.iter().flatten());
+            let program = Program::new(&m.sym, &chain, &ids);
+            let qs: Vec<Vec<f64>> = (0..LANES)
+                .map(|k| {
+                    (0..chain.dof())
+                        .map(|j| ((k * 5 + j * 3) as f64 * 0.73).sin() * 2.0)
+                        .collect()
+                })
+                .collect();
+            let mut lane_regs = program.lane_registers();
+            let mut lane_out = vec![[0.0; LANES]; program.outputs()];
+            let q: [&[f64]; LANES] = core::array::from_fn(|l| qs[l].as_slice());
+            program.eval_lanes(q, &mut lane_regs, &mut lane_out, sin_cos);
+            for (l, q) in qs.iter().enumerate() {
+                let mut regs = program.registers();
+                let mut out = vec![0.0; program.outputs()];
+                program.eval_with(q, &mut regs, &mut out, sin_cos);
+                for (k, v) in out.iter().enumerate() {
+                    assert_eq!(v.to_bits(), lane_out[k][l].to_bits(), "{file} lane {l}");
                 }
             }
         }
