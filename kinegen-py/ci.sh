@@ -44,6 +44,24 @@ stamp "wheel built"
 "$venv/bin/python" -m pip install --quiet --no-deps "$wheels"/kinegen-*.whl
 stamp "wheel installed"
 
-# From outside the source tree, so the installed package is the one imported.
-(cd "$venv" && "$venv/bin/python" -m pytest -q -p no:cacheprovider "$root/kinegen-py/tests")
+# The generated Rust code's values, which tests/test_generated_rust.py compares with
+# (a debug build: the test suite has built the robots crate already).
+cargo run --quiet -p kinegen-robots --example reference_values > "$CARGO_TARGET_DIR/rust-values.json"
+stamp "generated Rust values written"
+
+# From outside the source tree, so the installed package is the one imported. A test
+# skipped here would be one not run: that fails the check.
+log="$CARGO_TARGET_DIR/py-tests.log"
+status=0
+(cd "$venv" && KINEGEN_RUST_VALUES="$CARGO_TARGET_DIR/rust-values.json" \
+    "$venv/bin/python" -m pytest -q -rs -p no:cacheprovider "$root/kinegen-py/tests") \
+    > "$log" 2>&1 || status=$?
+cat "$log"
+if [ "$status" != 0 ]; then
+    exit "$status"
+fi
+if grep -q "SKIPPED" "$log"; then
+    echo "kinegen-py/ci.sh: a test was skipped (see above)" >&2
+    exit 1
+fi
 stamp "tests passed"

@@ -15,6 +15,8 @@ installed is left out and said so.
 import argparse
 import math
 import pathlib
+import subprocess
+import tempfile
 import time
 
 import numpy as np
@@ -82,6 +84,54 @@ def main():
         ("jacobian", "kinegen, batch", best_batch(lambda: ur5.jacobian(qs), a.n, a.repeats)),
         ("ik", "kinegen, single call", best(lambda: ur5.ik(pose), a.loops, a.repeats)),
         ("ik", "kinegen, batch", best_batch(lambda: ur5.ik(poses), a.n, a.repeats)),
+        (
+            "ik",
+            "kinegen, batch, residuals=False",
+            best_batch(lambda: ur5.ik(poses, residuals=False), a.n, a.repeats),
+        ),
+    ]
+
+    # The generated Rust code, compiled (robots/examples/ur5_batch.rs), on the same
+    # configurations and poses, its values checked equal to the module's first.
+    subprocess.run(
+        ["cargo", "build", "--quiet", "--release", "-p", "kinegen-robots", "--example", "ur5_batch"],
+        cwd=ROOT,
+        check=True,
+    )
+    target = pathlib.Path(
+        subprocess.run(
+            ["cargo", "metadata", "--format-version", "1", "--no-deps"],
+            cwd=ROOT,
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.split('"target_directory":"')[1].split('"')[0]
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        qs.astype("<f8").tofile(tmp / "q.bin")
+        poses.astype("<f8").tofile(tmp / "poses.bin")
+        out = subprocess.run(
+            [str(target / "release" / "examples" / "ur5_batch"), str(tmp / "q.bin"),
+             str(tmp / "poses.bin"), str(tmp / "out.bin"), str(a.repeats)],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.split()
+        values = np.fromfile(tmp / "out.bin", dtype="<f8")
+    fk_rust = values[: 16 * a.n].reshape(a.n, 4, 4)
+    jac_rust = values[16 * a.n:].reshape(a.n, 6, 6)
+    assert np.max(np.abs(fk_rust - ur5.fk(qs))) < 1e-12
+    assert np.max(np.abs(jac_rust - ur5.jacobian(qs))) < 1e-12
+    ks = ur5.ik(poses)
+    exact = int(np.sum(ks["valid"] & ks["exact"]))
+    assert exact == int(out[3]), (exact, out[3])
+    print(f"generated Rust: fk and jacobian equal the module's to 1e-12 at {a.n} configurations; "
+          f"ik finds the same {exact} exact solutions of {a.n} poses")
+    rows += [
+        ("fk", "generated Rust, compiled", float(out[0])),
+        ("jacobian", "generated Rust, compiled", float(out[1])),
+        ("ik", "generated Rust, compiled", float(out[2])),
     ]
 
     # Pinocchio, on the UR5's URDF (base_link to tool0), against kinegen reading the same
@@ -163,9 +213,16 @@ def main():
     for what in ["fk", "jacobian", "ik"]:
         mine = {c: t for (w, c, t) in rows if w == what}
         single = mine["kinegen, single call"]
+        batch = mine["kinegen, batch"]
+        rust = mine["generated Rust, compiled"]
         for contender, t in mine.items():
-            ratio = "" if contender.startswith("kinegen") else f"   ({t / single:.1f}× kinegen's single call)"
-            print(f"  {what:<9} {contender:<30} {t:9.2f}{ratio}")
+            if contender.startswith("generated"):
+                ratio = f"   (kinegen's batch is {batch / t:.1f}× this)"
+            elif contender.startswith("kinegen"):
+                ratio = ""
+            else:
+                ratio = f"   ({t / single:.1f}× kinegen's single call)"
+            print(f"  {what:<9} {contender:<34} {t:9.3f}{ratio}")
 
 
 if __name__ == "__main__":

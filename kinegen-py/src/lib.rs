@@ -19,7 +19,7 @@ use kinegen_core::front::toml_file::{load_description_file, load_description_str
 use kinegen_core::front::urdf::Urdf;
 use kinegen_core::{derive, generate, Chain, Derived, ItemHeader, Options};
 use numpy::ndarray::ArrayViewD;
-use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn, PyArrayMethods};
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -44,10 +44,16 @@ struct Inner {
     jacobian_ee_ids: Vec<Id>,
     /// The same outputs as tapes, and det J's and its factors' where it has them.
     fk: Tape,
+    /// Every link's frame (`base · A1 ⋯ Ai`), 12 entries each.
+    frames: Tape,
     jacobian: Tape,
     jacobian_ee: Tape,
     det: Option<Tape>,
+    /// The square task Jacobian's determinant (planar and SCARA-like arms).
+    task_det: Option<Tape>,
     factors: Option<Tape>,
+    /// The closed-form IK's solver, built once, or why the robot has none.
+    solver: Result<ik::Solver, CliError>,
 }
 
 /// A robot with its closed-form kinematics (see the module's docs).
@@ -97,12 +103,28 @@ impl Robot {
             )),
             _ => None,
         };
+        let solver = ik::Solver::new(&chain, &derived);
         Robot {
             inner: Arc::new(Inner {
+                solver,
                 fk: Tape::new(m, &chain, &fk_ids),
+                frames: Tape::new(
+                    m,
+                    &chain,
+                    &m.frame_rows
+                        .iter()
+                        .flatten()
+                        .flatten()
+                        .copied()
+                        .collect::<Vec<_>>(),
+                ),
                 jacobian: Tape::new(m, &chain, &jacobian_ids),
                 jacobian_ee: Tape::new(m, &chain, &jacobian_ee_ids),
                 det: dets.det.as_ref().map(|d| Tape::new(m, &chain, &[d.node])),
+                task_det: dets
+                    .det_task
+                    .as_ref()
+                    .map(|d| Tape::new(m, &chain, &[d.node])),
                 factors,
                 fk_ids,
                 jacobian_ids,
@@ -117,6 +139,13 @@ impl Robot {
 
     fn dof(&self) -> usize {
         self.inner.chain.dof()
+    }
+}
+
+impl Inner {
+    /// The IK solver, or why the robot has none.
+    fn solver(&self) -> Result<&ik::Solver, CliError> {
+        self.solver.as_ref().map_err(Clone::clone)
     }
 }
 
@@ -179,7 +208,19 @@ fn to_array<'py>(
     if full.is_empty() {
         return Ok(values[0].into_pyobject(py)?.into_any());
     }
-    Ok(values.into_pyarray(py).reshape(full)?.into_any())
+    shaped(py, values, full)
+}
+
+/// An array of `shape` from flat row-major values, made in one step (numpy's reshape
+/// of a flat array is a second call that costs as much as the first).
+fn shaped<'py, T: numpy::Element>(
+    py: Python<'py>,
+    values: Vec<T>,
+    shape: Vec<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let a = numpy::ndarray::ArrayD::from_shape_vec(shape, values)
+        .map_err(|e| PyRuntimeError::new_err(format!("kinegen: internal error: {e}")))?;
+    Ok(a.into_pyarray(py).into_any())
 }
 
 impl Robot {
@@ -205,6 +246,40 @@ impl Robot {
                 let mut regs = Vec::new();
                 for row in b.data.chunks(n.max(1)).take(b.rows) {
                     f(inner, row, &mut regs, &mut out);
+                }
+                out
+            })
+        })?;
+        to_array(py, out, b.batch.then_some(b.rows), shape)
+    }
+
+    /// Evaluate `tape(inner)` on every row of `q` (four rows side by side, the GIL
+    /// released), each row's outputs laid out by `layout` (`None`: as they are); the
+    /// result has shape `shape`, `(M, *shape)` for a batch.
+    fn map_tape<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        shape: &[usize],
+        tape: fn(&Inner) -> Option<&Tape>,
+        layout: Option<Layout>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.dof();
+        let b = read_batch(&q, &[n], "q")?;
+        let inner = &*self.inner;
+        let out = py.allow_threads(|| {
+            guarded(|| {
+                let Some(t) = tape(inner) else {
+                    return Vec::new();
+                };
+                let mut raw = Vec::new();
+                t.eval_rows(&b.data, n, b.rows, &mut raw);
+                let Some(layout) = layout else {
+                    return raw;
+                };
+                let mut out = Vec::with_capacity(shape.iter().product::<usize>() * b.rows);
+                for row in raw.chunks(t.outputs().max(1)).take(b.rows) {
+                    layout(row, &mut out);
                 }
                 out
             })
@@ -365,10 +440,24 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[4, 4], |inner, q, regs, out| {
-            inner.fk.eval(q, regs, out);
-            out.extend([0.0, 0.0, 0.0, 1.0]);
-        })
+        self.map_tape(py, q, &[4, 4], |i| Some(&i.fk), Some(with_bottom_rows))
+    }
+
+    /// Every link's frame in the world frame (`base · A1 ⋯ Ai`, without the tool), as
+    /// the generated `frames`: (N, 4, 4), or (M, N, 4, 4) for a batch.
+    fn frames<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.dof();
+        self.map_tape(
+            py,
+            q,
+            &[n, 4, 4],
+            |i| Some(&i.frames),
+            Some(with_bottom_rows),
+        )
     }
 
     /// Geometric Jacobian in the world frame, rows `[vx vy vz wx wy wz]`: (6, N) or (M, 6, N).
@@ -377,9 +466,7 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[6, self.dof()], |inner, q, regs, out| {
-            inner.jacobian.eval(q, regs, out)
-        })
+        self.map_tape(py, q, &[6, self.dof()], |i| Some(&i.jacobian), None)
     }
 
     /// Geometric Jacobian in the tool frame: (6, N) or (M, 6, N).
@@ -388,9 +475,7 @@ impl Robot {
         py: Python<'py>,
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.map_q(py, q, &[6, self.dof()], |inner, q, regs, out| {
-            inner.jacobian_ee.eval(q, regs, out)
-        })
+        self.map_tape(py, q, &[6, self.dof()], |i| Some(&i.jacobian_ee), None)
     }
 
     /// det J from its closed form: a float, or an (M,) array. `ValueError` for a robot
@@ -401,11 +486,24 @@ impl Robot {
         q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyAny>> {
         self.det_or_err()?;
-        self.map_q(py, q, &[], |inner, q, regs, out| {
-            if let Some(t) = &inner.det {
-                t.eval(q, regs, out);
-            }
-        })
+        self.map_tape(py, q, &[], |i| i.det.as_ref(), None)
+    }
+
+    /// The determinant of the square task Jacobian (the rows the arm controls, e.g.
+    /// `[x, y, rz]` of a planar arm) from its closed form: a float, or an (M,) array.
+    /// `ValueError` for a robot without a square task (see `jacobian_det`).
+    fn task_jacobian_det<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if self.inner.task_det.is_none() {
+            return Err(PyValueError::new_err(format!(
+                "`{}`: no square task Jacobian with a closed-form determinant",
+                self.inner.chain.name
+            )));
+        }
+        self.map_tape(py, q, &[], |i| i.task_det.as_ref(), None)
     }
 
     /// The factors of `det_factors` at `q`: `(names, values)`, values (K,) or (M, K). The
@@ -423,11 +521,7 @@ impl Robot {
             )));
         };
         let names: Vec<String> = det.factors.iter().map(|f| f.text.clone()).collect();
-        let values = self.map_q(py, q, &[names.len()], |inner, q, regs, out| {
-            if let Some(t) = &inner.factors {
-                t.eval(q, regs, out);
-            }
-        })?;
+        let values = self.map_tape(py, q, &[names.len()], |i| i.factors.as_ref(), None)?;
         Ok((names, values))
     }
 
@@ -492,22 +586,26 @@ impl Robot {
     /// `exact` (solves the pose; else the least-squares nearest), `singular` (a factor
     /// of det J vanishes), `within_limits`, `residual` (max |fk(q) - pose|), and for one
     /// pose `singular_factors` (names of the vanishing factors of each solution).
-    #[pyo3(signature = (pose, locked=None))]
+    /// `residuals=False` leaves the residual out (NaN): measuring it evaluates fk once
+    /// per solution, which costs more than the solving.
+    #[pyo3(signature = (pose, locked=None, residuals=true))]
     fn ik<'py>(
         &self,
         py: Python<'py>,
         pose: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
         locked: Option<f64>,
+        residuals: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let poses = read_poses(&pose)?;
         let inner = &*self.inner;
         let results = py.allow_threads(|| {
             guarded(|| {
-                let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
+                let solver = inner.solver()?;
+                let scratch = std::cell::RefCell::new(solver.scratch());
                 poses
                     .poses
                     .iter()
-                    .map(|p| solver.solve(*p, None, locked, None))
+                    .map(|p| solver.solve_with(*p, None, locked, None, residuals, &scratch))
                     .collect::<Result<Vec<_>, _>>()
             })
         })?;
@@ -536,14 +634,15 @@ impl Robot {
         let inner = &*self.inner;
         let found = py.allow_threads(|| {
             guarded(|| {
-                let solver = ik::Solver::new(&inner.chain, &inner.derived)?;
+                let solver = inner.solver()?;
+                let scratch = std::cell::RefCell::new(solver.scratch());
                 poses
                     .poses
                     .iter()
                     .zip(near.data.chunks(n))
                     .map(|(p, q)| {
                         solver
-                            .solve(*p, Some(q), None, None)
+                            .solve_with(*p, Some(q), None, None, false, &scratch)
                             .map(|r| r.near.flatten())
                     })
                     .collect::<Result<Vec<_>, _>>()
@@ -680,6 +779,17 @@ fn read_poses(x: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Poses> {
     })
 }
 
+/// How a row's outputs become the values of the returned array.
+type Layout = fn(&[f64], &mut Vec<f64>);
+
+/// A tape's 12 entries of each frame (3×4, row-major), each followed by its bottom row.
+fn with_bottom_rows(rows: &[f64], out: &mut Vec<f64>) {
+    for frame in rows.chunks(12) {
+        out.extend_from_slice(frame);
+        out.extend([0.0, 0.0, 0.0, 1.0]);
+    }
+}
+
 /// The dict `Robot.ik` returns.
 fn ik_dict<'py>(
     py: Python<'py>,
@@ -710,18 +820,16 @@ fn ik_dict<'py>(
         }
     }
     let lead: Vec<usize> = if batch { vec![m, k] } else { vec![k] };
-    let mask = |v: Vec<bool>| -> PyResult<Bound<'py, PyAny>> {
-        Ok(v.into_pyarray(py).reshape(lead.clone())?.into_any())
-    };
+    let mask = |v: Vec<bool>| -> PyResult<Bound<'py, PyAny>> { shaped(py, v, lead.clone()) };
     let d = PyDict::new(py);
     let mut q_shape = lead.clone();
     q_shape.push(n);
-    d.set_item("q", q.into_pyarray(py).reshape(q_shape)?)?;
+    d.set_item("q", shaped(py, q, q_shape)?)?;
     d.set_item("valid", mask(valid)?)?;
     d.set_item("exact", mask(exact)?)?;
     d.set_item("singular", mask(singular)?)?;
     d.set_item("within_limits", mask(within)?)?;
-    d.set_item("residual", residual.into_pyarray(py).reshape(lead.clone())?)?;
+    d.set_item("residual", shaped(py, residual, lead.clone())?)?;
     if !batch {
         d.set_item("singular_factors", PyList::new(py, &results[0].singular)?)?;
     }

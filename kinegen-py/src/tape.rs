@@ -1,12 +1,15 @@
 //! Straight-line code of some of the engine's nodes, for batches: the engine's register
 //! programs (`kinegen_core::kinematics::program`), which keep only the nodes the
-//! requested outputs need and give the bits of `Model::eval` (a graph walk with a memo
-//! the size of the whole graph, cleared on each call: right for one evaluation, costly
-//! for a batch), with scratch registers shared between the module's calls.
+//! requested outputs need (the graph walk of `Model::eval` clears a memo the size of the
+//! whole graph on each call: right for one evaluation, costly for a batch).
+//!
+//! Sines and cosines come from `kinegen::math::sin_cos_n`, as in the generated code; a
+//! batch runs four joint vectors side by side ([`Program::eval_lanes`]), each with the
+//! bits a single call gives it.
 
 use kinegen_core::algebra::graph::Id;
 use kinegen_core::kinematics::model::Model;
-use kinegen_core::kinematics::program::Program;
+use kinegen_core::kinematics::program::{Program, LANES};
 use kinegen_core::Chain;
 
 /// The program computing some nodes of a model.
@@ -23,12 +26,44 @@ impl Tape {
         }
     }
 
+    /// Values each joint vector gives.
+    pub fn outputs(&self) -> usize {
+        self.program.outputs()
+    }
+
     /// Append the outputs' values at `q` to `out`; `regs` is scratch space, reused
     /// (and shared with other tapes: it is reset on each call).
     pub fn eval(&self, q: &[f64], regs: &mut Vec<f64>, out: &mut Vec<f64>) {
         self.program.registers_into(regs);
         let start = out.len();
         out.resize(start + self.program.outputs(), 0.0);
-        self.program.eval(q, regs, &mut out[start..]);
+        self.program
+            .eval_with(q, regs, &mut out[start..], kinegen::math::sin_cos_n);
+    }
+
+    /// Append the outputs of each of `rows` joint vectors (`n` values each, one after
+    /// the other in `q`) to `out`, row after row: four at a time side by side, the rest
+    /// one by one, with the same bits either way.
+    pub fn eval_rows(&self, q: &[f64], n: usize, rows: usize, out: &mut Vec<f64>) {
+        let k = self.program.outputs();
+        out.reserve(k * rows);
+        let vector = |i: usize| &q[i * n..(i + 1) * n];
+        let full = rows - rows % LANES;
+        if full > 0 {
+            let mut regs = self.program.lane_registers();
+            let mut lanes = vec![[0.0; LANES]; k];
+            for first in (0..full).step_by(LANES) {
+                let q: [&[f64]; LANES] = core::array::from_fn(|l| vector(first + l));
+                self.program
+                    .eval_lanes(q, &mut regs, &mut lanes, kinegen::math::sin_cos_n);
+                for l in 0..LANES {
+                    out.extend(lanes.iter().map(|v| v[l]));
+                }
+            }
+        }
+        let mut regs = Vec::new();
+        for i in full..rows {
+            self.eval(vector(i), &mut regs, out);
+        }
     }
 }

@@ -100,11 +100,6 @@ def puma():
     return kinegen.robots.puma560()
 
 
-@pytest.fixture(scope="module")
-def shipped():
-    return {name: getattr(kinegen.robots, name)() for name in kinegen.robots.names()}
-
-
 # ---------------------------------------------------------------------------------------
 # Loading
 
@@ -186,9 +181,11 @@ def test_from_dh_dicts_and_tuples(ur5):
 # First order
 
 
-def test_instruction_lists_give_the_graphs_values_bit_for_bit(shipped):
-    # The methods evaluate flat instruction lists built from the engine's graph; walking
-    # the graph itself (as `kinegen eval` does) must give the same bits.
+def test_instruction_lists_give_the_graphs_values(shipped):
+    # The methods evaluate flat instruction lists built from the engine's graph, with the
+    # generated code's sines and cosines (kinegen::math::sin_cos_n); walking the graph
+    # itself (as `kinegen eval` does, with the platform's) must give the same values up
+    # to those functions' rounding: a few ulps of the entries' size.
     rng = np.random.default_rng(13)
     for name, r in shipped.items():
         for q in sample(r, 5, rng):
@@ -196,7 +193,11 @@ def test_instruction_lists_give_the_graphs_values_bit_for_bit(shipped):
                 mine = getattr(r, which)(q)
                 ref = r._reference(which, q)
                 flat = mine[:3].ravel() if which == "fk" else mine.ravel()
-                np.testing.assert_array_equal(flat, ref, err_msg=f"{name} {which}")
+                scale = max(1.0, np.abs(ref).max())
+                np.testing.assert_allclose(
+                    flat, ref, rtol=0, atol=16 * np.finfo(float).eps * scale,
+                    err_msg=f"{name} {which}",
+                )
 
 
 @pytest.mark.parametrize("which", ["ur5", "puma"])
@@ -292,7 +293,7 @@ def test_hessian_and_jdot_qdot_against_finite_differences(name, shipped):
 def test_batches_equal_single_calls(ur5):
     qs = sample(ur5, 7, np.random.default_rng(8))
     qd = np.random.default_rng(9).uniform(-1, 1, qs.shape)
-    for method in ["fk", "jacobian", "jacobian_ee", "jacobian_det", "manipulability", "hessian"]:
+    for method in ["fk", "frames", "jacobian", "jacobian_ee", "jacobian_det", "manipulability", "hessian"]:
         f = getattr(ur5, method)
         batch = f(qs)
         assert np.shape(batch)[0] == 7, method

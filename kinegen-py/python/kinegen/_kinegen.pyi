@@ -70,12 +70,16 @@ class Robot:
         """det J as ``kinegen show --what det`` prints it."""
     def fk(self, q: npt.ArrayLike) -> _F64:
         """Tool pose, (4, 4) or (M, 4, 4)."""
+    def frames(self, q: npt.ArrayLike) -> _F64:
+        """Every link's frame (without the tool), (N, 4, 4) or (M, N, 4, 4)."""
     def jacobian(self, q: npt.ArrayLike) -> _F64:
         """World-frame geometric Jacobian, (6, N) or (M, 6, N)."""
     def jacobian_ee(self, q: npt.ArrayLike) -> _F64:
         """Tool-frame geometric Jacobian, (6, N) or (M, 6, N)."""
     def jacobian_det(self, q: npt.ArrayLike) -> Union[float, _F64]:
         """det J from its closed form: a float or (M,)."""
+    def task_jacobian_det(self, q: npt.ArrayLike) -> Union[float, _F64]:
+        """The square task Jacobian's determinant: a float or (M,)."""
     def singular_factors(self, q: npt.ArrayLike) -> Tuple[List[str], _F64]:
         """The factors of det J: names and values (K,) or (M, K)."""
     def manipulability(self, q: npt.ArrayLike) -> Union[float, _F64]:
@@ -84,9 +88,15 @@ class Robot:
         """dJ/dq_k, (N, 6, N) or (M, N, 6, N)."""
     def jdot_qdot(self, q: npt.ArrayLike, qd: npt.ArrayLike) -> _F64:
         """dJ/dt qd, (6,) or (M, 6)."""
-    def ik(self, pose: npt.ArrayLike, locked: Optional[float] = None) -> Dict[str, Any]:
+    def ik(
+        self,
+        pose: npt.ArrayLike,
+        locked: Optional[float] = None,
+        residuals: bool = True,
+    ) -> Dict[str, Any]:
         """Every closed-form solution: ``q``, masks ``valid``, ``exact``, ``singular``,
-        ``within_limits``, and ``residual`` (a batch of poses adds a leading axis)."""
+        ``within_limits``, and ``residual`` (NaN with ``residuals=False``; a batch of
+        poses adds a leading axis)."""
     def ik_near(
         self, pose: npt.ArrayLike, q: npt.ArrayLike
     ) -> Union[Optional[_F64], Tuple[_F64, npt.NDArray[np.bool_]]]:
