@@ -52,6 +52,9 @@ struct Inner {
     /// The square task Jacobian's determinant (planar and SCARA-like arms).
     task_det: Option<Tape>,
     factors: Option<Tape>,
+    /// `FORMULAS` of the generated code, `(function, name, text, latex)`, made on first
+    /// use (emitting the code's items takes as long as deriving them).
+    formulas: std::sync::OnceLock<Vec<[String; 4]>>,
     /// The closed-form IK's solver, built once, or why the robot has none.
     solver: Result<ik::Solver, CliError>,
 }
@@ -106,6 +109,7 @@ impl Robot {
         let solver = ik::Solver::new(&chain, &derived);
         Robot {
             inner: Arc::new(Inner {
+                formulas: std::sync::OnceLock::new(),
                 solver,
                 fk: Tape::new(m, &chain, &fk_ids),
                 frames: Tape::new(
@@ -693,6 +697,46 @@ impl Robot {
         // a solver and its programs for it.
         let ik = self.inner.derived.ik.as_ref().ok()?;
         Some(ik.plan.name.clone())
+    }
+
+    /// Every closed form of the generated code, as its `FORMULAS` lists them: dicts of
+    /// `function` (`"fk"`, `"jacobian"`, `"jacobian_det"`, `"hessian"`, …), `name`
+    /// (`"t4"`, `"c23"` for a shared intermediate, `"T[0][3]"`, `"J[2][1]"`, `"det"`),
+    /// `text` (Rust syntax) and `latex`, each function's intermediates before its outputs.
+    #[getter]
+    fn formulas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let i = &*self.inner;
+        let entries = py.allow_threads(|| {
+            guarded(|| {
+                i.formulas
+                    .get_or_init(|| {
+                        let d = &i.derived;
+                        kinegen_core::emit::functions::functions(
+                            &i.chain,
+                            &d.model,
+                            &d.det,
+                            &d.second,
+                            &d.det_gradient,
+                            &d.ik,
+                        )
+                        .formulas
+                        .entries()
+                        .map(|(f, n, t, l)| [f, n, t, l].map(String::from))
+                        .collect()
+                    })
+                    .clone()
+            })
+        })?;
+        let list = PyList::empty(py);
+        for [function, name, text, latex] in entries {
+            let d = PyDict::new(py);
+            d.set_item("function", function)?;
+            d.set_item("name", name)?;
+            d.set_item("text", text)?;
+            d.set_item("latex", latex)?;
+            list.append(d)?;
+        }
+        Ok(list)
     }
 
     /// det J as `kinegen show --what det` prints it (the factored closed form).

@@ -3,8 +3,8 @@
 `robots/examples/reference_values.rs` evaluates the generated code of every robot of
 `robots/` at fixed configurations and writes the values as JSON; `kinegen-py/ci.sh`
 runs it and names the file in KINEGEN_RUST_VALUES. Every method of `kinegen.Robot`
-must give the same values to 1e-12 (relative to the value's size, at least 1), and
-`ik` the same solutions with the same `exact` flags (and `singular` wherever the
+must give the same values to 1e-12 (relative to the value's size, at least 1),
+`formulas` the generated `FORMULAS`, and `ik` the same solutions with the same `exact` flags (and `singular` wherever the
 generated code flags one).
 
 Without KINEGEN_RUST_VALUES (pytest by hand) the tests are skipped; ci.sh fails on a
@@ -12,7 +12,6 @@ skipped test.
 """
 
 import json
-import math
 import os
 import pathlib
 
@@ -22,7 +21,6 @@ import pytest
 import kinegen
 
 TOLERANCE = 1e-12
-TAU = 2 * math.pi
 
 
 @pytest.fixture(scope="module")
@@ -48,9 +46,9 @@ def test_every_shipped_robot_has_generated_values(values):
 
 
 def test_every_method_gives_the_generated_codes_values(values, shipped):
-    for name, samples in values.items():
+    for name, v in values.items():
         robot = shipped[name]
-        for k, s in enumerate(samples):
+        for k, s in enumerate(v["samples"]):
             q, at = np.array(s["q"]), f"{name} sample {k}"
             close(robot.fk(q), s["fk"], f"{at} fk")
             close(robot.frames(q), s["frames"], f"{at} frames")
@@ -70,10 +68,9 @@ def test_every_method_gives_the_generated_codes_values(values, shipped):
 
 def test_ik_gives_the_generated_codes_solutions(values, shipped):
     compared = 0
-    for name, samples in values.items():
+    for name, v in values.items():
         robot = shipped[name]
-        revolute = np.isfinite(robot.limits[:, 0]) | True
-        for k, s in enumerate(samples):
+        for k, s in enumerate(v["samples"]):
             at = f"{name} sample {k}"
             pose = np.array(s["fk"]).reshape(4, 4)
             r = robot.ik(pose, locked=s["locked"])
@@ -82,10 +79,8 @@ def test_ik_gives_the_generated_codes_solutions(values, shipped):
             assert len(qs) == len(rust), f"{at}: {len(qs)} solutions, the Rust {len(rust)}"
             unmatched = list(range(len(qs)))
             for b in rust:
-                # The same configuration (whole turns apart at most on revolute joints).
-                d = qs[unmatched] - np.array(b["q"])
-                d = np.where(revolute, (d + math.pi) % TAU - math.pi, d)
-                err = np.abs(d).max(axis=1)
+                # The same joint values: both wrap revolute joints by the same rule.
+                err = np.abs(qs[unmatched] - np.array(b["q"])).max(axis=1)
                 i = int(err.argmin())
                 assert err[i] <= TOLERANCE * 10, f"{at}: Rust solution {b['q']} missing ({err[i]:.1e})"
                 j = unmatched.pop(i)
@@ -94,3 +89,10 @@ def test_ik_gives_the_generated_codes_solutions(values, shipped):
                     assert r["singular"][j], f"{at}: {b['q']} singular in Rust only"
                 compared += 1
     assert compared > 500, compared
+
+
+def test_formulas_are_the_generated_codes(values, shipped):
+    for name, v in values.items():
+        mine = [[f["function"], f["name"], f["text"], f["latex"]] for f in shipped[name].formulas]
+        assert mine == v["formulas"], name
+        assert any(f[0] == "fk" for f in mine), name

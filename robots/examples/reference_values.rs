@@ -5,7 +5,8 @@
 //! `cargo run -p kinegen-robots --example reference_values > values.json`
 //!
 //! For every robot of this crate (keyed by its TOML file's name, as
-//! `kinegen.robots.<name>()` loads it): configurations `q` inside the limits (a fixed
+//! `kinegen.robots.<name>()` loads it): its `FORMULAS` (`formulas`, each as
+//! `[function, name, text, latex]`), and in `samples` configurations `q` inside the limits (a fixed
 //! sequence, the same on every machine), joint rates `qd`, and at each the generated
 //! `fk`, `frames`, `jacobian`, `jacobian_ee`, `jacobian_det` (`det`, six joints),
 //! `task_jacobian_det` (`task_det`, a square task Jacobian), `hessian`,
@@ -36,6 +37,35 @@ impl Sequence {
 /// A JSON list of numbers (Rust's `{:?}` of an f64 is its shortest round-trip form).
 fn list(values: impl IntoIterator<Item = f64>) -> String {
     let items: Vec<String> = values.into_iter().map(|v| format!("{v:?}")).collect();
+    format!("[{}]", items.join(","))
+}
+
+/// A JSON string.
+fn string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// `FORMULAS` as JSON.
+fn formulas(all: &[kinegen::Formula]) -> String {
+    let items: Vec<String> = all
+        .iter()
+        .map(|f| {
+            let fields = [f.function, f.name, f.text, f.latex].map(string);
+            format!("[{}]", fields.join(","))
+        })
+        .collect();
     format!("[{}]", items.join(","))
 }
 
@@ -105,15 +135,19 @@ where
 }
 
 fn main() {
-    let mut robots: Vec<(&str, String)> = Vec::new();
+    let mut robots: Vec<(&str, String, String)> = Vec::new();
     macro_rules! six {
         ($($name:literal => $ty:ident),* $(,)?) => {$(
-            robots.push(($name, values(&$ty::default(), |_, _| None, None)));
+            robots.push(($name, values(&$ty::default(), |_, _| None, None), formulas($ty::FORMULAS)));
         )*};
     }
     macro_rules! task {
         ($($name:literal => $ty:ident),* $(,)?) => {$(
-            robots.push(($name, values(&$ty::default(), |r, q| TaskKinematics::task_jacobian_det(r, q), None)));
+            robots.push((
+                $name,
+                values(&$ty::default(), |r, q| TaskKinematics::task_jacobian_det(r, q), None),
+                formulas($ty::FORMULAS),
+            ));
         )*};
     }
     macro_rules! seven {
@@ -121,6 +155,7 @@ fn main() {
             robots.push((
                 $name,
                 values(&$ty::default(), |_, _| None, Some($ty::IK_FREE - 1)),
+                formulas($ty::FORMULAS),
             ));
         )*};
     }
@@ -136,7 +171,9 @@ fn main() {
            "kinova_gen3" => KinovaGen3);
     let body: Vec<String> = robots
         .iter()
-        .map(|(name, v)| format!("\"{name}\":{v}"))
+        .map(|(name, samples, formulas)| {
+            format!("\"{name}\":{{\"formulas\":{formulas},\"samples\":{samples}}}")
+        })
         .collect();
     println!("{{{}}}", body.join(",\n"));
 }

@@ -28,6 +28,14 @@ impl Formulas {
         }
     }
 
+    /// `(function, name, text, latex)` of each formula, in order: the generated
+    /// `FORMULAS` (each function's shared intermediates, then its outputs).
+    pub fn entries(&self) -> impl Iterator<Item = (&str, &str, &str, &str)> {
+        self.0
+            .iter()
+            .map(|[f, n, t, l]| (f.as_str(), n.as_str(), t.as_str(), l.as_str()))
+    }
+
     /// The `::kinegen::Formula` literals, comma-separated.
     pub fn rust(&self) -> String {
         let items: Vec<String> = self

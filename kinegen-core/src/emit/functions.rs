@@ -55,6 +55,8 @@ pub struct Functions {
     pub notes: Vec<String>,
     /// The float type name (`f64`, `f32`).
     pub float: &'static str,
+    /// What `FORMULAS` lists, as data.
+    pub formulas: Formulas,
     /// The `Check` impl closed-form IK needs, when there is an `ik`.
     pub check: Option<CheckImpl>,
     /// Wall time of emitting the closed-form IK's items, milliseconds (for
@@ -150,6 +152,7 @@ pub fn functions(
         stats: out.stats,
         notes: out.notes,
         float: coder.float(),
+        formulas: out.formulas,
         check,
         ik_emit_ms,
     }

@@ -66,6 +66,9 @@ class Robot:
     def ik_family(self) -> Optional[str]:
         """The closed-form IK family, or None."""
     @property
+    def formulas(self) -> List[Dict[str, str]]:
+        """The generated code's FORMULAS: dicts of function, name, text, latex."""
+    @property
     def det(self) -> str:
         """det J as ``kinegen show --what det`` prints it."""
     def fk(self, q: npt.ArrayLike) -> _F64:
