@@ -66,6 +66,10 @@ def main():
     ap.add_argument("--n", type=int, default=10000, help="batch size")
     ap.add_argument("--loops", type=int, default=2000, help="single calls per timing")
     ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument(
+        "--batch-repeats", type=int, default=20,
+        help="runs of each batch call (one call is short: more runs find the quiet one)",
+    )
     a = ap.parse_args()
 
     rng = np.random.default_rng(0)
@@ -79,15 +83,15 @@ def main():
     q, pose = qs[0], poses[0]
     rows += [
         ("fk", "kinegen, single call", best(lambda: ur5.fk(q), a.loops, a.repeats)),
-        ("fk", "kinegen, batch", best_batch(lambda: ur5.fk(qs), a.n, a.repeats)),
+        ("fk", "kinegen, batch", best_batch(lambda: ur5.fk(qs), a.n, a.batch_repeats)),
         ("jacobian", "kinegen, single call", best(lambda: ur5.jacobian(q), a.loops, a.repeats)),
-        ("jacobian", "kinegen, batch", best_batch(lambda: ur5.jacobian(qs), a.n, a.repeats)),
+        ("jacobian", "kinegen, batch", best_batch(lambda: ur5.jacobian(qs), a.n, a.batch_repeats)),
         ("ik", "kinegen, single call", best(lambda: ur5.ik(pose), a.loops, a.repeats)),
-        ("ik", "kinegen, batch", best_batch(lambda: ur5.ik(poses), a.n, a.repeats)),
+        ("ik", "kinegen, batch", best_batch(lambda: ur5.ik(poses), a.n, a.batch_repeats)),
         (
             "ik",
             "kinegen, batch, residuals=False",
-            best_batch(lambda: ur5.ik(poses, residuals=False), a.n, a.repeats),
+            best_batch(lambda: ur5.ik(poses, residuals=False), a.n, a.batch_repeats),
         ),
     ]
 
@@ -113,7 +117,7 @@ def main():
         poses.astype("<f8").tofile(tmp / "poses.bin")
         out = subprocess.run(
             [str(target / "release" / "examples" / "ur5_batch"), str(tmp / "q.bin"),
-             str(tmp / "poses.bin"), str(tmp / "out.bin"), str(a.repeats)],
+             str(tmp / "poses.bin"), str(tmp / "out.bin"), str(a.batch_repeats)],
             check=True,
             capture_output=True,
             text=True,
@@ -206,10 +210,11 @@ def main():
         batch = [p for p in poses]
         rows += [
             ("ik", "eaik IK, single call", best(lambda: eaik.IK(pose), a.loops, a.repeats)),
-            ("ik", "eaik IK_batched, 1 thread", best_batch(lambda: eaik.IK_batched(batch, 1), a.n, a.repeats)),
+            ("ik", "eaik IK_batched, 1 thread", best_batch(lambda: eaik.IK_batched(batch, 1), a.n, a.batch_repeats)),
         ]
 
-    print(f"\nUR5, µs per configuration or pose (best of {a.repeats}; batches of {a.n}):")
+    print(f"\nUR5, µs per configuration or pose (best of {a.repeats} runs of single calls, "
+          f"{a.batch_repeats} of batches of {a.n}):")
     for what in ["fk", "jacobian", "ik"]:
         mine = {c: t for (w, c, t) in rows if w == what}
         single = mine["kinegen, single call"]
