@@ -33,13 +33,30 @@ fn fails(args: &[&str]) -> String {
     err
 }
 
-/// A URDF written to a temporary file (not in the repository).
-fn temp_urdf(name: &str, src: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("kinegen-cli-urdf-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, src).unwrap();
-    p.display().to_string()
+/// A directory of a test's temporary files (not in the repository), removed with them
+/// when the test ends, passed or failed.
+struct TempDir(std::path::PathBuf);
+
+impl TempDir {
+    fn new(test: &str) -> TempDir {
+        let dir =
+            std::env::temp_dir().join(format!("kinegen-cli-urdf-{}-{test}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        TempDir(dir)
+    }
+
+    /// `src` written to the file `name` in the directory.
+    fn file(&self, name: &str, src: &str) -> String {
+        let p = self.0.join(name);
+        std::fs::write(&p, src).unwrap();
+        p.display().to_string()
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 #[test]
@@ -165,7 +182,8 @@ fn symbolic_names_every_length() {
         "{model}"
     );
     // A TOML file says it with `params = "auto"`.
-    let toml = temp_urdf(
+    let dir = TempDir::new("symbolic");
+    let toml = dir.file(
         "mh5.toml",
         &format!(
             "urdf = {:?}\nparams = \"auto\"\n",
@@ -178,12 +196,13 @@ fn symbolic_names_every_length() {
 
 #[test]
 fn bad_files_exit_2_with_the_line() {
+    let dir = TempDir::new("bad_files");
     let e = fails(&["show", "/nonexistent/arm.urdf"]);
     assert!(
         e.contains("/nonexistent/arm.urdf: cannot read the file"),
         "{e}"
     );
-    let xacro = temp_urdf(
+    let xacro = dir.file(
         "arm.urdf",
         "<robot name=\"r\">\n<xacro:include filename=\"x.xacro\"/>\n</robot>\n",
     );
@@ -192,13 +211,13 @@ fn bad_files_exit_2_with_the_line() {
         e.contains("arm.urdf:2: this is an unexpanded xacro file: run `xacro"),
         "{e}"
     );
-    let not_xml = temp_urdf(
+    let not_xml = dir.file(
         "broken.urdf",
         "<robot name=\"r\">\n<link name=\"a\">\n</robot>\n",
     );
     let e = fails(&["show", &not_xml]);
     assert!(e.contains("broken.urdf:3: not an XML file"), "{e}");
-    let floating = temp_urdf(
+    let floating = dir.file(
         "floating.urdf",
         "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/>\n\
          <joint name=\"free\" type=\"floating\"><parent link=\"a\"/><child link=\"b\"/></joint>\n</robot>\n",
