@@ -12,7 +12,7 @@ use kinegen::ik::families::WristPair;
 use kinegen::ik::geometry::Pose;
 use kinegen_core::kinematics::ik::family::Family;
 use kinegen_core::kinematics::ik::IkModel;
-use kinegen_core::kinematics::program::Program;
+use kinegen_core::kinematics::program::{Program, LANES};
 use kinegen_core::model::robot::JointKind;
 use kinegen_core::{Chain, Derived};
 use serde_json::{json, Value};
@@ -63,8 +63,12 @@ pub struct Solver {
 pub struct Scratch {
     fk: Vec<f64>,
     factors: Vec<f64>,
-    fk_and_factors: Vec<f64>,
     values: Vec<f64>,
+    /// Lane registers and outputs of the programs that measure the solutions, four at a
+    /// time.
+    factors_lanes: Vec<[f64; LANES]>,
+    fk_and_factors_lanes: Vec<[f64; LANES]>,
+    lane_values: Vec<[f64; LANES]>,
 }
 
 impl Solver {
@@ -145,8 +149,10 @@ impl Solver {
         Scratch {
             fk: self.fk.registers(),
             factors: self.factors.registers(),
-            fk_and_factors: self.fk_and_factors.registers(),
-            values: vec![0.0; self.fk_and_factors.outputs()],
+            values: vec![0.0; self.fk.outputs().max(self.factors.outputs())],
+            factors_lanes: self.factors.lane_registers(),
+            fk_and_factors_lanes: self.fk_and_factors.lane_registers(),
+            lane_values: vec![[0.0; LANES]; self.fk_and_factors.outputs()],
         }
     }
 
@@ -264,35 +270,52 @@ impl Solver {
         self.miss(&t, pose)
     }
 
-    /// What every solution reports: its residual (with `residual`; else NaN) and the bits
-    /// of its vanishing singular factors. One evaluation of fk and the factors together
-    /// shares their sines and cosines; both take them four at a time, as the generated
-    /// code does.
-    fn measure(&self, q: &[f64], pose: &Pose, residual: bool, s: &mut Scratch) -> (f64, u32) {
-        let sin_cos = kinegen::math::sin_cos_n;
+    /// What each solution reports: its residual (with `residual`; else NaN) and the bits
+    /// of its vanishing singular factors. One program of fk and the factors together
+    /// shares their sines and cosines; four solutions are evaluated side by side.
+    fn measure(
+        &self,
+        branches: &[DynBranch],
+        pose: &Pose,
+        residual: bool,
+        s: &mut Scratch,
+    ) -> (Vec<f64>, Vec<u32>) {
         let (program, regs) = if residual {
-            (&self.fk_and_factors, &mut s.fk_and_factors)
+            (&self.fk_and_factors, &mut s.fk_and_factors_lanes)
         } else {
-            (&self.factors, &mut s.factors)
+            (&self.factors, &mut s.factors_lanes)
         };
-        program.eval_with(q, regs, &mut s.values, sin_cos);
-        let v = &s.values[..program.outputs()];
-        let (miss, factors) = if residual {
-            let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
-            for (i, row) in t.iter_mut().take(3).enumerate() {
-                row.copy_from_slice(&v[4 * i..4 * i + 4]);
-            }
-            (self.miss(&t, pose), &v[12..])
-        } else {
-            (f64::NAN, v)
-        };
-        let mut bits = 0;
-        for (i, f) in factors.iter().enumerate() {
-            if f.abs() <= kinegen::ik::solutions::SINGULAR_TOLERANCE {
-                bits |= 1 << i.min(31);
+        let factors_from = if residual { 12 } else { 0 };
+        let mut misses = Vec::with_capacity(branches.len());
+        let mut bits = Vec::with_capacity(branches.len());
+        let v = &mut s.lane_values;
+        for chunk in branches.chunks(LANES) {
+            // A short chunk repeats its last solution in the spare lanes.
+            let q: [&[f64]; LANES] =
+                std::array::from_fn(|l| chunk[l.min(chunk.len() - 1)].q.as_slice());
+            program.eval_lanes(q, regs, v, kinegen::math::sin_cos_n);
+            for l in 0..chunk.len() {
+                misses.push(if residual {
+                    let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+                    for (i, row) in t.iter_mut().take(3).enumerate() {
+                        for (j, x) in row.iter_mut().enumerate() {
+                            *x = v[4 * i + j][l];
+                        }
+                    }
+                    self.miss(&t, pose)
+                } else {
+                    f64::NAN
+                });
+                let mut b = 0;
+                for (i, f) in v[factors_from..program.outputs()].iter().enumerate() {
+                    if f[l].abs() <= kinegen::ik::solutions::SINGULAR_TOLERANCE {
+                        b |= 1 << i.min(31);
+                    }
+                }
+                bits.push(b);
             }
         }
-        (miss, bits)
+        (misses, bits)
     }
 
     /// Every solution of `pose`; with `near`, also the nearest to it (its free joints
@@ -323,10 +346,7 @@ impl Solver {
         let branches = self.branches(pose, near, locked, arm_angle, scratch)?;
         let s = &mut *scratch.borrow_mut();
         let target = Pose::from_matrix(&pose);
-        let (residuals, bits): (Vec<f64>, Vec<u32>) = branches
-            .iter()
-            .map(|b| self.measure(&b.q, &target, residuals, s))
-            .unzip();
+        let (residuals, bits) = self.measure(&branches, &target, residuals, s);
         let singular = bits.into_iter().map(|b| self.names(b)).collect();
         let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
         let free_joint = match arm_angle {
