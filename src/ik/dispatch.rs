@@ -61,6 +61,97 @@ pub struct DynBranch {
     pub within_limits: bool,
 }
 
+/// The flags of one solution in [`DynSolutions`] (those of [`DynBranch`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DynFlags {
+    /// Reaches the pose.
+    pub exact: bool,
+    /// Measured `max |fk − pose|` (0 when not measured).
+    pub residual: f64,
+    /// Vanishing singular factors (bits).
+    pub singular: u32,
+    /// A subproblem met a singular configuration.
+    pub at_singularity: bool,
+    /// Within the limits.
+    pub within_limits: bool,
+}
+
+/// The solutions of one pose in storage a caller keeps from pose to pose: no allocation
+/// once it has held the most solutions a pose has ([`solve_into`]).
+///
+/// ```
+/// use kinegen::ik::dispatch::DynSolutions;
+/// let s = DynSolutions::default();
+/// assert!(s.is_empty() && s.to_branches().is_empty());
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DynSolutions {
+    /// Joints per solution.
+    n: usize,
+    /// Joint values, solution after solution.
+    q: Vec<f64>,
+    flags: Vec<DynFlags>,
+}
+
+impl DynSolutions {
+    /// Number of solutions.
+    pub fn len(&self) -> usize {
+        self.flags.len()
+    }
+
+    /// No solution.
+    pub fn is_empty(&self) -> bool {
+        self.flags.is_empty()
+    }
+
+    /// Joint values of solution `i`.
+    pub fn q(&self, i: usize) -> &[f64] {
+        &self.q[i * self.n..(i + 1) * self.n]
+    }
+
+    /// Flags of solution `i`.
+    pub fn flags(&self, i: usize) -> &DynFlags {
+        &self.flags[i]
+    }
+
+    /// The solutions as [`DynBranch`]es.
+    pub fn to_branches(&self) -> Vec<DynBranch> {
+        (0..self.len())
+            .map(|i| {
+                let f = self.flags[i];
+                DynBranch {
+                    q: self.q(i).to_vec(),
+                    exact: f.exact,
+                    residual: f.residual,
+                    singular: f.singular,
+                    at_singularity: f.at_singularity,
+                    within_limits: f.within_limits,
+                }
+            })
+            .collect()
+    }
+
+    fn clear(&mut self) {
+        self.q.clear();
+        self.flags.clear();
+    }
+
+    fn fill<const N: usize, const K: usize>(&mut self, s: &IkSolutions<N, K>) {
+        self.clear();
+        self.n = N;
+        for b in s.iter() {
+            self.q.extend_from_slice(&b.q);
+            self.flags.push(DynFlags {
+                exact: b.exact,
+                residual: b.residual,
+                singular: b.singular,
+                at_singularity: b.at_singularity,
+                within_limits: b.within_limits,
+            });
+        }
+    }
+}
+
 /// What the caller evaluates for a candidate.
 pub struct Checks<'a> {
     /// `max |fk(q) − pose|` (or the task-row error).
@@ -110,28 +201,16 @@ fn geometry<const N: usize>(g: &DynGeometry) -> Geometry<N> {
     }
 }
 
-fn branches<const N: usize, const K: usize>(s: &IkSolutions<N, K>) -> Vec<DynBranch> {
-    s.iter()
-        .map(|b| DynBranch {
-            q: b.q.to_vec(),
-            exact: b.exact,
-            residual: b.residual,
-            singular: b.singular,
-            at_singularity: b.at_singularity,
-            within_limits: b.within_limits,
-        })
-        .collect()
-}
-
 fn finished<const N: usize, const K: usize>(
     c: &Candidates<N, K>,
     pr: &DynProblem,
     checks: &Checks,
-) -> Vec<DynBranch> {
+    out: &mut DynSolutions,
+) {
     let pose = Pose::from_matrix(&pr.pose);
     let revolute: [bool; N] = core::array::from_fn(|i| pr.revolute[i]);
     let limits: [[f64; 2]; N] = core::array::from_fn(|i| pr.limits[i]);
-    branches(&finish(c, &pose, &revolute, &limits, checks))
+    out.fill(&finish(c, &pose, &revolute, &limits, checks));
 }
 
 fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
@@ -154,7 +233,7 @@ fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<
     Some(out)
 }
 
-fn planar<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
+fn planar<const N: usize>(pr: &DynProblem, checks: &Checks, out: &mut DynSolutions) {
     let g = geometry::<N>(pr.geometry);
     let free: [f64; N] = core::array::from_fn(|i| pr.free[i]);
     let pose = Pose::from_matrix(&pr.pose);
@@ -167,26 +246,38 @@ fn planar<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
         &free,
         &mut c,
     );
-    finished(&c, pr, checks)
+    finished(&c, pr, checks, out)
 }
 
-fn pitch_roll<const N: usize>(pr: &DynProblem, checks: &Checks) -> Vec<DynBranch> {
+fn pitch_roll<const N: usize>(pr: &DynProblem, checks: &Checks, out: &mut DynSolutions) {
     let g = geometry::<N>(pr.geometry);
     let free: [f64; N] = core::array::from_fn(|i| pr.free[i]);
     let mut c = Candidates::<N, 4>::default();
     families::pitch_roll(&g, &Pose::from_matrix(&pr.pose), &free, &mut c);
-    finished(&c, pr, checks)
+    finished(&c, pr, checks, out)
 }
 
 /// Every solution of `pr.pose`; `Err` for a solver or joint count no family has.
 pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'static str> {
+    let mut out = DynSolutions::default();
+    solve_into(pr, checks, &mut out)?;
+    Ok(out.to_branches())
+}
+
+/// [`solve`] into `out` (its solutions replaced), for a caller solving pose after pose.
+pub fn solve_into(
+    pr: &DynProblem,
+    checks: &Checks,
+    out: &mut DynSolutions,
+) -> Result<(), &'static str> {
+    out.clear();
     let n = pr.geometry.h.len();
     if pr.free.len() != n || pr.revolute.len() != n || pr.limits.len() != n {
         return Err("the free values, joint kinds and limits must have one entry per joint");
     }
     let pose = Pose::from_matrix(&pr.pose);
     if !pose.is_finite() || pr.free.iter().any(|x| !x.is_finite()) || !pr.q_locked.is_finite() {
-        return Ok(Vec::new());
+        return Ok(());
     }
     if let Some(case) = pr.plan.solver.strip_prefix("position_") {
         if n != 3 {
@@ -208,7 +299,8 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
             "cartesian" => families::position_cartesian(&g, &pose, &free, &mut c),
             _ => return Err("unknown solver"),
         }
-        return Ok(finished(&c, pr, checks));
+        finished(&c, pr, checks, out);
+        return Ok(());
     }
     if pr.plan.solver == "cartesian_yaw" {
         if n != 4 {
@@ -221,33 +313,36 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
         };
         let mut c = Candidates::<4, 1>::default();
         families::cartesian_yaw(&g, &pose, r, &free, &mut c);
-        return Ok(finished(&c, pr, checks));
+        finished(&c, pr, checks, out);
+        return Ok(());
     }
     if pr.plan.solver == "pitch_roll" {
-        return match n {
-            4 => Ok(pitch_roll::<4>(pr, checks)),
-            5 => Ok(pitch_roll::<5>(pr, checks)),
-            _ => Err("the pitch-and-roll arm has 4 or 5 joints"),
-        };
+        match n {
+            4 => pitch_roll::<4>(pr, checks, out),
+            5 => pitch_roll::<5>(pr, checks, out),
+            _ => return Err("the pitch-and-roll arm has 4 or 5 joints"),
+        }
+        return Ok(());
     }
     if pr.plan.solver == "planar" {
-        return match n {
-            2 => Ok(planar::<2>(pr, checks)),
-            3 => Ok(planar::<3>(pr, checks)),
-            4 => Ok(planar::<4>(pr, checks)),
-            _ => Err("planar IK is for 2 to 4 joints"),
-        };
+        match n {
+            2 => planar::<2>(pr, checks, out),
+            3 => planar::<3>(pr, checks, out),
+            4 => planar::<4>(pr, checks, out),
+            _ => return Err("planar IK is for 2 to 4 joints"),
+        }
+        return Ok(());
     }
     if pr.plan.solver == "general_6r" {
         // One run-time robot per call: the hint only saves time within it.
         let hint = families::Hint::new();
-        return six_or_locked::<16>(pr, checks, |g, free| {
+        return six_or_locked::<16>(pr, checks, out, |g, free| {
             let mut c = Candidates::default();
             families::general_6r(g, &pose, free, &hint, &mut c);
             Some(c)
         });
     }
-    six_or_locked::<8>(pr, checks, |g, free| six(pr.plan, g, &pose, free))
+    six_or_locked::<8>(pr, checks, out, |g, free| six(pr.plan, g, &pose, free))
 }
 
 /// A 6-joint solver's candidates on the robot's six joints, or on a 7-joint arm's six
@@ -255,14 +350,16 @@ pub fn solve(pr: &DynProblem, checks: &Checks) -> Result<Vec<DynBranch>, &'stati
 fn six_or_locked<const K: usize>(
     pr: &DynProblem,
     checks: &Checks,
+    out: &mut DynSolutions,
     solve: impl Fn(&Geometry<6>, &[f64; 6]) -> Option<Candidates<6, K>>,
-) -> Result<Vec<DynBranch>, &'static str> {
+) -> Result<(), &'static str> {
     match (pr.geometry.h.len(), pr.plan.locked) {
         (6, None) => {
             let g = geometry::<6>(pr.geometry);
             let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
             let c = solve(&g, &free).ok_or("unknown solver")?;
-            Ok(finished(&c, pr, checks))
+            finished(&c, pr, checks, out);
+            Ok(())
         }
         (7, Some(k)) => {
             let g7 = geometry::<7>(pr.geometry);
@@ -271,7 +368,8 @@ fn six_or_locked<const K: usize>(
             let free: [f64; 6] = without(&free7, k);
             let c6 = solve(&g, &free).ok_or("unknown solver")?;
             let c = with_locked::<6, 7, K>(&c6, k, pr.q_locked);
-            Ok(finished(&c, pr, checks))
+            finished(&c, pr, checks, out);
+            Ok(())
         }
         _ => Err("closed-form IK is for 6 joints, or 7 with one locked"),
     }
@@ -285,6 +383,19 @@ pub fn solve_arm_angle(
     psi: f64,
     checks: &Checks,
 ) -> Result<Vec<DynBranch>, &'static str> {
+    let mut out = DynSolutions::default();
+    solve_arm_angle_into(pr, psi, checks, &mut out)?;
+    Ok(out.to_branches())
+}
+
+/// [`solve_arm_angle`] into `out` (its solutions replaced).
+pub fn solve_arm_angle_into(
+    pr: &DynProblem,
+    psi: f64,
+    checks: &Checks,
+    out: &mut DynSolutions,
+) -> Result<(), &'static str> {
+    out.clear();
     let n = pr.geometry.h.len();
     if n != 7 {
         return Err("the arm angle is for 7-joint S-R-S arms");
@@ -294,11 +405,12 @@ pub fn solve_arm_angle(
     }
     let pose = Pose::from_matrix(&pr.pose);
     if !pose.is_finite() || pr.free.iter().any(|x| !x.is_finite()) || !psi.is_finite() {
-        return Ok(Vec::new());
+        return Ok(());
     }
     let g = geometry::<7>(pr.geometry);
     let free: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
     let mut c = Candidates::<7, 8>::default();
     families::srs_arm_angle(&g, &pose, psi, WristPair::HalfTurn, &free, &mut c);
-    Ok(finished(&c, pr, checks))
+    finished(&c, pr, checks, out);
+    Ok(())
 }
