@@ -6,7 +6,8 @@
 use std::fmt::Write;
 
 use kinegen::ik::dispatch::{
-    solve, solve_arm_angle, Checks, DynBranch, DynGeometry, DynPlan, DynProblem,
+    solve_arm_angle_into, solve_into, Checks, DynBranch, DynGeometry, DynPlan, DynProblem,
+    DynSolutions,
 };
 use kinegen::ik::families::WristPair;
 use kinegen::ik::geometry::Pose;
@@ -56,6 +57,8 @@ pub struct Solver {
     fk_and_factors: Program,
     /// The task rows a planar, position or SCARA-like arm solves (`None`: the pose).
     task_rows: Option<Vec<usize>>,
+    /// The free joints' values when the caller gives none.
+    zeros: Vec<f64>,
 }
 
 /// Registers of a [`Solver`]'s programs: one per thread, reused from pose to pose.
@@ -134,6 +137,7 @@ impl Solver {
             fk: Program::new(&model.sym, chain, &fk_ids),
             factors: Program::new(&model.sym, chain, &factor_ids),
             fk_and_factors: Program::new(&model.sym, chain, &both),
+            zeros: vec![0.0; chain.dof()],
             task_rows: match ik.plan.family {
                 Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => chain
                     .task
@@ -242,8 +246,9 @@ impl Solver {
         bits
     }
 
-    /// The names of the singular factors set in `bits` (`sin(q5) = 0`).
-    fn names(&self, bits: u32) -> Vec<String> {
+    /// The names of the singular factors set in `bits` (`sin(q5) = 0`), as
+    /// [`Solver::measured_into`] gives them.
+    pub fn names(&self, bits: u32) -> Vec<String> {
         self.factor_names
             .iter()
             .enumerate()
@@ -270,31 +275,34 @@ impl Solver {
         self.miss(&t, pose)
     }
 
-    /// What each solution reports: its residual (with `residual`; else NaN) and the bits
-    /// of its vanishing singular factors. One program of fk and the factors together
-    /// shares their sines and cosines; four solutions are evaluated side by side.
-    fn measure(
+    /// What each of `count` solutions (joint values `q(i)`) reports, appended to
+    /// `misses` and `bits`: its residual (with `residual`; else NaN) and the bits of its
+    /// vanishing singular factors. One program of fk and the factors together shares
+    /// their sines and cosines; four solutions are evaluated side by side.
+    #[allow(clippy::too_many_arguments)]
+    fn measure<'q>(
         &self,
-        branches: &[DynBranch],
+        count: usize,
+        q: impl Fn(usize) -> &'q [f64],
         pose: &Pose,
         residual: bool,
         s: &mut Scratch,
-    ) -> (Vec<f64>, Vec<u32>) {
+        misses: &mut Vec<f64>,
+        bits: &mut Vec<u32>,
+    ) {
         let (program, regs) = if residual {
             (&self.fk_and_factors, &mut s.fk_and_factors_lanes)
         } else {
             (&self.factors, &mut s.factors_lanes)
         };
         let factors_from = if residual { 12 } else { 0 };
-        let mut misses = Vec::with_capacity(branches.len());
-        let mut bits = Vec::with_capacity(branches.len());
         let v = &mut s.lane_values;
-        for chunk in branches.chunks(LANES) {
+        for first in (0..count).step_by(LANES) {
+            let len = LANES.min(count - first);
             // A short chunk repeats its last solution in the spare lanes.
-            let q: [&[f64]; LANES] =
-                std::array::from_fn(|l| chunk[l.min(chunk.len() - 1)].q.as_slice());
-            program.eval_lanes(q, regs, v, kinegen::math::sin_cos_n);
-            for l in 0..chunk.len() {
+            let lanes: [&[f64]; LANES] = std::array::from_fn(|l| q(first + l.min(len - 1)));
+            program.eval_lanes(lanes, regs, v, kinegen::math::sin_cos_n);
+            for l in 0..len {
                 misses.push(if residual {
                     let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
                     for (i, row) in t.iter_mut().take(3).enumerate() {
@@ -315,7 +323,6 @@ impl Solver {
                 bits.push(b);
             }
         }
-        (misses, bits)
     }
 
     /// Every solution of `pose`; with `near`, also the nearest to it (its free joints
@@ -346,7 +353,17 @@ impl Solver {
         let branches = self.branches(pose, near, locked, arm_angle, scratch)?;
         let s = &mut *scratch.borrow_mut();
         let target = Pose::from_matrix(&pose);
-        let (residuals, bits) = self.measure(&branches, &target, residuals, s);
+        let (mut misses, mut bits) = (Vec::new(), Vec::new());
+        self.measure(
+            branches.len(),
+            |i| &branches[i].q,
+            &target,
+            residuals,
+            s,
+            &mut misses,
+            &mut bits,
+        );
+        let residuals = misses;
         let singular = bits.into_iter().map(|b| self.names(b)).collect();
         let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
         let free_joint = match arm_angle {
@@ -399,7 +416,54 @@ impl Solver {
         arm_angle: Option<f64>,
         scratch: &std::cell::RefCell<Scratch>,
     ) -> Result<Vec<DynBranch>, CliError> {
-        let n = self.chain.dof();
+        let mut out = DynSolutions::default();
+        self.solutions_into(pose, near, locked, arm_angle, scratch, &mut out)?;
+        Ok(out.to_branches())
+    }
+
+    /// Every solution of `pose` with its residual (NaN without `residuals`) and the bits
+    /// of its vanishing singular factors (in the determinant's order), into storage the
+    /// caller keeps from pose to pose: what [`Solver::solve_with`] reports, without
+    /// allocating once the storage has grown. `misses` and `bits` are replaced.
+    #[allow(clippy::too_many_arguments)]
+    pub fn measured_into(
+        &self,
+        pose: [[f64; 4]; 4],
+        locked: Option<f64>,
+        residuals: bool,
+        scratch: &std::cell::RefCell<Scratch>,
+        solutions: &mut DynSolutions,
+        misses: &mut Vec<f64>,
+        bits: &mut Vec<u32>,
+    ) -> Result<(), CliError> {
+        self.solutions_into(pose, None, locked, None, scratch, solutions)?;
+        misses.clear();
+        bits.clear();
+        let target = Pose::from_matrix(&pose);
+        let s = &mut *scratch.borrow_mut();
+        let sols = &*solutions;
+        self.measure(
+            sols.len(),
+            |i| sols.q(i),
+            &target,
+            residuals,
+            s,
+            misses,
+            bits,
+        );
+        Ok(())
+    }
+
+    /// [`Solver::branches`] into `out` (its solutions replaced).
+    pub fn solutions_into(
+        &self,
+        pose: [[f64; 4]; 4],
+        near: Option<&[f64]>,
+        locked: Option<f64>,
+        arm_angle: Option<f64>,
+        scratch: &std::cell::RefCell<Scratch>,
+        out: &mut DynSolutions,
+    ) -> Result<(), CliError> {
         if arm_angle.is_some() {
             if self.ik.plan.arm_angle.is_none() {
                 return Err(CliError::Usage(format!(
@@ -414,8 +478,7 @@ impl Solver {
             }
         }
         let q_locked = self.q_locked(locked, near, arm_angle)?;
-        let zeros = vec![0.0; n];
-        let free = near.unwrap_or(&zeros);
+        let free = near.unwrap_or(&self.zeros);
         let target = Pose::from_matrix(&pose);
         let residual = |q: &[f64]| self.residual(q, &target, &mut scratch.borrow_mut());
         let singular = |q: &[f64]| self.vanishing_bits(q, &mut scratch.borrow_mut());
@@ -433,8 +496,8 @@ impl Solver {
             limits: &self.limits,
         };
         match arm_angle {
-            Some(psi) => solve_arm_angle(&problem, psi, &checks),
-            None => solve(&problem, &checks),
+            Some(psi) => solve_arm_angle_into(&problem, psi, &checks, out),
+            None => solve_into(&problem, &checks, out),
         }
         .map_err(|e| CliError::Usage(e.into()))
     }

@@ -88,9 +88,9 @@ pub fn placements(
                         }
                         let mut best: f64 = -1.0;
                         for &l in &locked {
-                            for q in solutions(&solver, pose, l, &w.ik)? {
+                            for q in solutions(&solver, pose, l, &w.ik, &mut w.solutions)? {
                                 count += 1;
-                                best = best.max(measures.eval(&q, &mut w.measures).0);
+                                best = best.max(measures.eval(q, &mut w.measures).0);
                             }
                         }
                         if best < 0.0 {

@@ -7,6 +7,7 @@ use std::cell::RefCell;
 use std::fmt::Write as _;
 use std::time::Instant;
 
+use kinegen::ik::dispatch::DynSolutions;
 use kinegen_core::{Chain, Derived};
 use rayon::prelude::*;
 
@@ -92,6 +93,8 @@ pub struct Map {
 /// Each thread's registers.
 pub(super) struct Worker {
     pub(super) ik: RefCell<Scratch>,
+    /// A pose's solutions, reused from pose to pose.
+    pub(super) solutions: DynSolutions,
     pub(super) measures: measures::Scratch,
 }
 
@@ -99,6 +102,7 @@ impl Worker {
     pub(super) fn new(solver: &Solver, measures: &Measures) -> Worker {
         Worker {
             ik: RefCell::new(solver.scratch()),
+            solutions: DynSolutions::default(),
             measures: measures.scratch(),
         }
     }
@@ -168,9 +172,9 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
             best.iter_mut().for_each(|b| *b = f64::NAN);
             for &locked in &locked_values {
                 calls += 1;
-                for q in solutions(&solver, pose, locked, &w.ik)? {
+                for q in solutions(&solver, pose, locked, &w.ik, &mut w.solutions)? {
                     count += 1;
-                    let (m, values) = measures.eval(&q, &mut w.measures);
+                    let (m, values) = measures.eval(q, &mut w.measures);
                     // `f64::max`/`min` skip a NaN operand: NaN is "none yet".
                     v.manipulability = v.manipulability.max(m);
                     for ((f, b), x) in v.factor_min.iter_mut().zip(best.iter_mut()).zip(values) {
@@ -272,18 +276,19 @@ pub(super) fn locked_values(solver: &Solver, samples: usize) -> Vec<Option<f64>>
     }
 }
 
-/// The solutions of `pose` that reach it within the joint limits.
-pub(super) fn solutions(
+/// The solutions of `pose` that reach it within the joint limits (solved into `out`).
+pub(super) fn solutions<'a>(
     solver: &Solver,
     pose: [[f64; 4]; 4],
     locked: Option<f64>,
     scratch: &RefCell<Scratch>,
-) -> Result<impl Iterator<Item = Vec<f64>>, CliError> {
-    let branches = solver.branches(pose, None, locked, None, scratch)?;
-    Ok(branches
-        .into_iter()
-        .filter(|b| b.exact && b.within_limits)
-        .map(|b| b.q))
+    out: &'a mut DynSolutions,
+) -> Result<impl Iterator<Item = &'a [f64]>, CliError> {
+    solver.solutions_into(pose, None, locked, None, scratch, out)?;
+    let out = &*out;
+    Ok((0..out.len())
+        .filter(|&i| out.flags(i).exact && out.flags(i).within_limits)
+        .map(|i| out.q(i)))
 }
 
 impl Map {
