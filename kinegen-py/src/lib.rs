@@ -602,19 +602,14 @@ impl Robot {
     ) -> PyResult<Bound<'py, PyDict>> {
         let poses = read_poses(&pose)?;
         let inner = &*self.inner;
-        let results = py.allow_threads(|| {
+        let solved = py.allow_threads(|| {
             guarded(|| {
                 let solver = inner.solver()?;
-                let scratch = std::cell::RefCell::new(solver.scratch());
-                poses
-                    .poses
-                    .iter()
-                    .map(|p| solver.solve_with(*p, None, locked, None, residuals, &scratch))
-                    .collect::<Result<Vec<_>, _>>()
+                Solved::new(solver, &poses.poses, locked, residuals)
             })
         })?;
-        let results = results.map_err(to_py_err)?;
-        ik_dict(py, &results, self.dof(), poses.batch)
+        let solved = solved.map_err(to_py_err)?;
+        ik_dict(py, &solved, self.dof(), poses.batch)
     }
 
     /// The exact IK solution nearest to the configuration `q` (whole turns of revolute
@@ -834,16 +829,77 @@ fn with_bottom_rows(rows: &[f64], out: &mut Vec<f64>) {
     }
 }
 
+/// The solutions of a batch of poses, flat: what `Robot.ik` returns, gathered without
+/// an allocation per pose.
+struct Solved {
+    /// Solutions of each pose.
+    counts: Vec<usize>,
+    /// Joint values, solution after solution.
+    q: Vec<f64>,
+    exact: Vec<bool>,
+    /// A factor of det J vanishes, or a subproblem met a singular configuration.
+    singular: Vec<bool>,
+    within_limits: Vec<bool>,
+    residual: Vec<f64>,
+    /// The vanishing factors' names of each solution of the first pose.
+    first_names: Vec<Vec<String>>,
+}
+
+impl Solved {
+    fn new(
+        solver: &ik::Solver,
+        poses: &[[[f64; 4]; 4]],
+        locked: Option<f64>,
+        residuals: bool,
+    ) -> Result<Solved, CliError> {
+        let scratch = std::cell::RefCell::new(solver.scratch());
+        let mut out = Solved {
+            counts: Vec::with_capacity(poses.len()),
+            q: Vec::new(),
+            exact: Vec::new(),
+            singular: Vec::new(),
+            within_limits: Vec::new(),
+            residual: Vec::new(),
+            first_names: Vec::new(),
+        };
+        let mut sols = kinegen::ik::dispatch::DynSolutions::default();
+        let (mut misses, mut bits) = (Vec::new(), Vec::new());
+        for (i, p) in poses.iter().enumerate() {
+            solver.measured_into(
+                *p,
+                locked,
+                residuals,
+                &scratch,
+                &mut sols,
+                &mut misses,
+                &mut bits,
+            )?;
+            out.counts.push(sols.len());
+            for j in 0..sols.len() {
+                let f = sols.flags(j);
+                out.q.extend_from_slice(sols.q(j));
+                out.exact.push(f.exact);
+                out.singular.push(f.at_singularity || bits[j] != 0);
+                out.within_limits.push(f.within_limits);
+                out.residual.push(misses[j]);
+                if i == 0 {
+                    out.first_names.push(solver.names(bits[j]));
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
 /// The dict `Robot.ik` returns.
 fn ik_dict<'py>(
     py: Python<'py>,
-    results: &[ik::PoseResult],
+    solved: &Solved,
     n: usize,
     batch: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let k = results.iter().map(|r| r.branches.len()).max().unwrap_or(0);
-    let k = if batch { k } else { results[0].branches.len() };
-    let m = results.len();
+    let k = solved.counts.iter().copied().max().unwrap_or(0);
+    let m = solved.counts.len();
     let mut q = vec![f64::NAN; m * k * n];
     let mut residual = vec![f64::NAN; m * k];
     let (mut valid, mut exact, mut singular, mut within) = (
@@ -852,16 +908,18 @@ fn ik_dict<'py>(
         vec![false; m * k],
         vec![false; m * k],
     );
-    for (i, r) in results.iter().enumerate() {
-        for (j, b) in r.branches.iter().enumerate() {
-            let at = i * k + j;
-            q[at * n..(at + 1) * n].copy_from_slice(&b.q);
-            residual[at] = r.residuals[j];
+    let mut from = 0;
+    for (i, &count) in solved.counts.iter().enumerate() {
+        for j in 0..count {
+            let (at, s) = (i * k + j, from + j);
+            q[at * n..(at + 1) * n].copy_from_slice(&solved.q[s * n..(s + 1) * n]);
+            residual[at] = solved.residual[s];
             valid[at] = true;
-            exact[at] = b.exact;
-            singular[at] = b.at_singularity || !r.singular[j].is_empty();
-            within[at] = b.within_limits;
+            exact[at] = solved.exact[s];
+            singular[at] = solved.singular[s];
+            within[at] = solved.within_limits[s];
         }
+        from += count;
     }
     let lead: Vec<usize> = if batch { vec![m, k] } else { vec![k] };
     let mask = |v: Vec<bool>| -> PyResult<Bound<'py, PyAny>> { shaped(py, v, lead.clone()) };
@@ -875,7 +933,7 @@ fn ik_dict<'py>(
     d.set_item("within_limits", mask(within)?)?;
     d.set_item("residual", shaped(py, residual, lead.clone())?)?;
     if !batch {
-        d.set_item("singular_factors", PyList::new(py, &results[0].singular)?)?;
+        d.set_item("singular_factors", PyList::new(py, &solved.first_names)?)?;
     }
     Ok(d)
 }
