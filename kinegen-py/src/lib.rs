@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 mod tape;
 
-use tape::Tape;
+use tape::{Layout, Tape};
 
 use kinegen_cli::det_hook::{determinants, Determinants};
 use kinegen_cli::{eval, formulas, ik, robots, CliError, UrdfArgs, What};
@@ -276,15 +276,8 @@ impl Robot {
                 let Some(t) = tape(inner) else {
                     return Vec::new();
                 };
-                let mut raw = Vec::new();
-                t.eval_rows(&b.data, n, b.rows, &mut raw);
-                let Some(layout) = layout else {
-                    return raw;
-                };
                 let mut out = Vec::with_capacity(shape.iter().product::<usize>() * b.rows);
-                for row in raw.chunks(t.outputs().max(1)).take(b.rows) {
-                    layout(row, &mut out);
-                }
+                t.eval_rows(&b.data, n, b.rows, layout, &mut out);
                 out
             })
         })?;
@@ -817,9 +810,6 @@ fn read_poses(x: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Poses> {
         batch: b.batch,
     })
 }
-
-/// How a row's outputs become the values of the returned array.
-type Layout = fn(&[f64], &mut Vec<f64>);
 
 /// A tape's 12 entries of each frame (3×4, row-major), each followed by its bottom row.
 fn with_bottom_rows(rows: &[f64], out: &mut Vec<f64>) {

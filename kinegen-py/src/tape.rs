@@ -26,11 +26,6 @@ impl Tape {
         }
     }
 
-    /// Values each joint vector gives.
-    pub fn outputs(&self) -> usize {
-        self.program.outputs()
-    }
-
     /// Append the outputs' values at `q` to `out`; `regs` is scratch space, reused
     /// (and shared with other tapes: it is reset on each call).
     pub fn eval(&self, q: &[f64], regs: &mut Vec<f64>, out: &mut Vec<f64>) {
@@ -42,12 +37,24 @@ impl Tape {
     }
 
     /// Append the outputs of each of `rows` joint vectors (`n` values each, one after
-    /// the other in `q`) to `out`, row after row: four at a time side by side, the rest
-    /// one by one, with the same bits either way.
-    pub fn eval_rows(&self, q: &[f64], n: usize, rows: usize, out: &mut Vec<f64>) {
+    /// the other in `q`) to `out`, row after row, each laid out by `layout` (`None`: as
+    /// they are): four at a time side by side, the rest one by one, with the same bits
+    /// either way.
+    pub fn eval_rows(
+        &self,
+        q: &[f64],
+        n: usize,
+        rows: usize,
+        layout: Option<Layout>,
+        out: &mut Vec<f64>,
+    ) {
         let k = self.program.outputs();
-        out.reserve(k * rows);
         let vector = |i: usize| &q[i * n..(i + 1) * n];
+        let mut row = Vec::with_capacity(k);
+        let put = |row: &[f64], out: &mut Vec<f64>| match layout {
+            Some(f) => f(row, out),
+            None => out.extend_from_slice(row),
+        };
         let full = rows - rows % LANES;
         if full > 0 {
             let mut regs = self.program.lane_registers();
@@ -57,13 +64,21 @@ impl Tape {
                 self.program
                     .eval_lanes(q, &mut regs, &mut lanes, kinegen::math::sin_cos_n);
                 for l in 0..LANES {
-                    out.extend(lanes.iter().map(|v| v[l]));
+                    row.clear();
+                    row.extend(lanes.iter().map(|v| v[l]));
+                    put(&row, out);
                 }
             }
         }
         let mut regs = Vec::new();
         for i in full..rows {
-            self.eval(vector(i), &mut regs, out);
+            row.clear();
+            self.eval(vector(i), &mut regs, &mut row);
+            put(&row, out);
         }
     }
 }
+
+/// How a row's outputs become the values of the returned array (e.g. a 3×4 transform's
+/// rows with `0 0 0 1` after them).
+pub type Layout = fn(&[f64], &mut Vec<f64>);
