@@ -180,7 +180,13 @@ impl Style for MathMl {
     }
 
     fn paren(&self, s: &str) -> String {
-        format!("<mrow><mo>(</mo>{s}<mo>)</mo></mrow>")
+        // Parentheses grow around a fraction only: around subscripts they would stand
+        // taller than the line.
+        if s.contains("<mfrac>") {
+            format!("<mrow><mo>(</mo>{s}<mo>)</mo></mrow>")
+        } else {
+            format!(r#"<mrow><mo stretchy="false">(</mo>{s}<mo stretchy="false">)</mo></mrow>"#)
+        }
     }
 
     fn neg(&self, x: &str) -> String {
@@ -274,7 +280,7 @@ mod tests {
         // The same parentheses as the LaTeX form: `a - (b + c)`, none in `a - b c`.
         assert_eq!(
             m("a - (b + c)"),
-            "<mrow><mi>a</mi><mo>−</mo><mrow><mo>(</mo><mrow><mi>b</mi><mo>+</mo><mi>c</mi></mrow><mo>)</mo></mrow></mrow>"
+            "<mrow><mi>a</mi><mo>−</mo><mrow><mo stretchy=\"false\">(</mo><mrow><mi>b</mi><mo>+</mo><mi>c</mi></mrow><mo stretchy=\"false\">)</mo></mrow></mrow>"
         );
         assert_eq!(
             m("a - (b * c)"),
@@ -303,7 +309,7 @@ mod tests {
         assert_eq!(m("sqrt(3)"), "<msqrt><mn>3</mn></msqrt>");
         assert_eq!(
             m("cos(q2 + q3)"),
-            "<mrow><mi>cos</mi><mo>&#x2061;</mo><mrow><mo>(</mo><mrow><msub><mi>q</mi><mn>2</mn></msub><mo>+</mo><msub><mi>q</mi><mn>3</mn></msub></mrow><mo>)</mo></mrow></mrow>"
+            "<mrow><mi>cos</mi><mo>&#x2061;</mo><mrow><mo stretchy=\"false\">(</mo><mrow><msub><mi>q</mi><mn>2</mn></msub><mo>+</mo><msub><mi>q</mi><mn>3</mn></msub></mrow><mo stretchy=\"false\">)</mo></mrow></mrow>"
         );
         // The determinant's text writes powers with `^`: a square, not `(a·c)^2`.
         assert_eq!(
@@ -312,7 +318,7 @@ mod tests {
         );
         assert_eq!(
             m("(a + b).powi(2)"),
-            "<msup><mrow><mo>(</mo><mrow><mi>a</mi><mo>+</mo><mi>b</mi></mrow><mo>)</mo></mrow><mn>2</mn></msup>"
+            "<msup><mrow><mo stretchy=\"false\">(</mo><mrow><mi>a</mi><mo>+</mo><mi>b</mi></mrow><mo stretchy=\"false\">)</mo></mrow><mn>2</mn></msup>"
         );
         assert_eq!(
             m("self.L1 / (a + b)"),
