@@ -5,7 +5,7 @@
 use std::fmt::Write;
 
 use kinegen_core::emit::code::{Coder, OpCount};
-use kinegen_core::emit::mathml::{self, escape, math, mathml_name, mtext};
+use kinegen_core::emit::mathml::{self, escape, math, mathml_lhs, mtext};
 use kinegen_core::emit::text::to_text;
 use kinegen_core::{Chain, Derived};
 
@@ -155,31 +155,23 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
     }
 }
 
-/// `T[0][3]` → T with subscript 1,4 (1-based, as the LaTeX form); `det J`; other names
-/// with their textbook subscripts.
+/// `det J`, `J̇q̇[r]`, and the names of [`mathml_lhs`] (`T[0][3]` → T with subscript
+/// 1,4: 1-based, as the LaTeX form).
 fn lhs(name: &str) -> String {
-    if let Some((m, rest)) = name.split_once('[') {
-        let idx: Vec<usize> = rest
-            .split(['[', ']'])
-            .filter(|s| !s.is_empty())
-            .filter_map(|s| s.parse().ok())
-            .collect();
-        let sub: Vec<String> = idx.iter().map(|i| format!("<mn>{}</mn>", i + 1)).collect();
-        let base = match m {
-            "Jt" => "<msub><mi>J</mi><mi>t</mi></msub>".to_string(),
-            "Jdot_qdot" => "<mrow><mover accent=\"true\"><mi>J</mi><mo>&#x2D9;</mo></mover>\
-                            <mover accent=\"true\"><mi>q</mi><mo>&#x2D9;</mo></mover></mrow>"
-                .to_string(),
-            m => format!("<mi>{}</mi>", escape(m)),
-        };
-        return format!("<msub>{base}<mrow>{}</mrow></msub>", sub.join("<mo>,</mo>"));
+    if let Some(r) = name.strip_prefix("Jdot_qdot[") {
+        let r: usize = r.trim_end_matches(']').parse().unwrap_or(0);
+        return format!(
+            "<msub><mrow><mover accent=\"true\"><mi>J</mi><mo>&#x2D9;</mo></mover>\
+             <mover accent=\"true\"><mi>q</mi><mo>&#x2D9;</mo></mover></mrow><mn>{}</mn></msub>",
+            r + 1
+        );
     }
     match name {
         "det J" => "<mrow><mi>det</mi><mo>&#x2061;</mo><mi>J</mi></mrow>".into(),
         "det Jt" => {
             "<mrow><mi>det</mi><mo>&#x2061;</mo><msub><mi>J</mi><mi>t</mi></msub></mrow>".into()
         }
-        n => mathml_name(n),
+        n => mathml_lhs(n),
     }
 }
 

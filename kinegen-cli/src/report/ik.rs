@@ -27,7 +27,7 @@ pub struct Solutions {
 }
 
 impl Solutions {
-    /// Solve the pose of [`Q0`] (clamped into `chain`'s limits).
+    /// Solve the pose of a fixed generic configuration (clamped into `chain`'s limits).
     pub fn of(chain: &Chain, derived: &Derived) -> Solutions {
         let q0: Vec<f64> = chain
             .links

@@ -18,7 +18,9 @@
 //! assert!(math("<mi>x</mi>", true).starts_with(r#"<math display="block""#));
 //! ```
 
-use crate::emit::walk::{self, name_parts, Accent, Base, FormulaError, Node, Style, ATOM, GREEK};
+use crate::emit::walk::{
+    self, name_parts, Accent, Base, FormulaError, NameParts, Node, Style, ATOM, GREEK,
+};
 
 /// A Rust-syntax formula (`c1 * L1 + L2 * c12`) as one MathML Core element (an
 /// `<mrow>`, `<mi>`, `<mn>`, `<mfrac>` …, without the `<math>` around it: see [`math`]).
@@ -100,6 +102,50 @@ pub fn mathml_name(name: &str) -> String {
         base
     } else {
         format!("<msub>{base}{}</msub>", subscript(&parts.sub))
+    }
+}
+
+/// The left-hand side of a listed formula: a matrix entry `T[0][3]` as T with the
+/// 1-based subscript `1,4` (as the LaTeX form numbers them; `Jt[1][2]` → J with the
+/// subscript `t,2,3`), any other name as [`mathml_name`].
+///
+/// ```
+/// use kinegen_core::emit::mathml::mathml_lhs;
+/// assert_eq!(
+///     mathml_lhs("T[0][3]"),
+///     "<msub><mi>T</mi><mrow><mn>1</mn><mo>,</mo><mn>4</mn></mrow></msub>"
+/// );
+/// assert_eq!(mathml_lhs("c23"), "<msub><mi>c</mi><mn>23</mn></msub>");
+/// ```
+pub fn mathml_lhs(name: &str) -> String {
+    let Some((m, rest)) = name.split_once('[') else {
+        return mathml_name(name);
+    };
+    let idx: Option<Vec<usize>> = rest
+        .split(['[', ']'])
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().ok())
+        .collect();
+    let Some(idx) = idx else {
+        return mtext(name);
+    };
+    let sub: Vec<String> = idx.iter().map(|i| format!("<mn>{}</mn>", i + 1)).collect();
+    let sub = match sub.len() {
+        1 => sub[0].clone(),
+        _ => format!("<mrow>{}</mrow>", sub.join("<mo>,</mo>")),
+    };
+    // `Jt` is J with subscript t already: its entry's indices follow after a comma.
+    match name_parts(m) {
+        NameParts {
+            accent: Accent::None,
+            base: Base::Letter(l),
+            sub: s,
+        } if !s.is_empty() => format!(
+            "<msub><mi>{}</mi><mrow>{}<mo>,</mo>{sub}</mrow></msub>",
+            escape(&l),
+            subscript(&s)
+        ),
+        _ => format!("<msub>{}{sub}</msub>", mathml_name(m)),
     }
 }
 

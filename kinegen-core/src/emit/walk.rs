@@ -1,7 +1,7 @@
 //! The one walk over a formula that every printer shares: the engine's Rust-syntax
 //! formula (`c1 * L1 + L2 * c12`) parsed with `syn`, printed again with the least
 //! parentheses its precedence needs. What a sum, a product or a name looks like is a
-//! [`Style`]: plain text ([`crate::emit::text`]), LaTeX ([`crate::emit::latex`]) and
+//! `Style`: plain text ([`crate::emit::text`]), LaTeX ([`crate::emit::latex`]) and
 //! MathML ([`crate::emit::mathml`]) are three styles of this walk, so they cannot
 //! disagree on structure.
 //!
