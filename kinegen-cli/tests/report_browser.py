@@ -7,8 +7,9 @@ checks are injected here.
 
     python report_browser.py OUT_DIR PAGE.html...
 
-Screenshots go to OUT_DIR: NAME-top.png (the first screen) and NAME-SECTION.png for the
-singular factors and each section with a picture. Exits 1 with one line per failure.
+Screenshots go to OUT_DIR: NAME-top.png (the first screen), NAME-singular-view.png (the
+screen from the singular factors on) and NAME-SECTION.png for the singular factors and
+each section with a picture. Exits 1 with one line per failure.
 """
 
 import json
@@ -89,6 +90,10 @@ def main() -> int:
                         f"elements, content {bw}x{bh})")
             shots = [out / f"{name}-top.png"]
             driver.save_screenshot(str(shots[0]))
+            # The singular factors and the map under them, one screen (the README's).
+            driver.execute_script("document.getElementById('singularities').scrollIntoView()")
+            shots.append(out / f"{name}-singular-view.png")
+            driver.save_screenshot(str(shots[-1]))
             for sid in ["singularities", "singularity-map", "stick-figures", "trajectory"]:
                 found = driver.find_elements(By.ID, sid)
                 if found:

@@ -83,9 +83,10 @@ pub fn singular_factors(chain: &Chain, dets: &Determinants) -> Section {
     }
 }
 
-/// What a factor's zero set is, from the joints it involves: a constant (the robot's
-/// lengths: never zero here, or det J would vanish everywhere), the last three joints
-/// (a wrist singularity), the elbow alone, or the arm's position joints.
+/// What a factor's zero set is, read from the joints it involves (the usual names of
+/// a 6R arm's singularities): a constant (the robot's lengths: never zero here, or det
+/// J would vanish everywhere), the last three joints only (wrist), joint 3 alone
+/// (elbow), joint 2 or 3 with others (shoulder).
 pub fn meaning(chain: &Chain, f: &Factor) -> String {
     let n = chain.dof();
     let joints: Vec<String> = f.joints.iter().map(|j| format!("q{j}")).collect();
@@ -97,17 +98,17 @@ pub fn meaning(chain: &Chain, f: &Factor) -> String {
         "wrist singularity: the wrist's axes line up and it loses a rotation"
     } else if f.joints.len() == 1 && f.joints[0] == 3 {
         "elbow singularity: the arm stretched out or folded back"
-    } else if f.joints.iter().all(|&j| j + 3 <= n) {
-        "arm (shoulder) singularity: the position joints cannot move the wrist centre in \
-         every direction"
+    } else if f.joints.iter().any(|&j| j == 2 || j == 3) {
+        "shoulder singularity (it involves the arm's position joints): the point the arm \
+         positions meets an axis of the shoulder and cannot be moved in every direction"
     } else {
         "joints of the arm and the wrist together"
     };
     format!("depends on {}; {kind}", joints.join(", "))
 }
 
-/// The second-order bias acceleration `J̇ q̇` (its non-zero entries), with the counts of
-/// the other second-order outputs.
+/// The second-order bias acceleration `J̇ q̇` (its non-zero entries; the counts of the
+/// other second-order outputs are in the stats section).
 pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
     let mut body = String::new();
     let s = &derived.second;
@@ -215,5 +216,27 @@ mod tests {
             "<msub><mi>T</mi><mrow><mn>1</mn><mo>,</mo><mn>4</mn></mrow></msub>"
         );
         assert_eq!(lhs("c23"), "<msub><mi>c</mi><mn>23</mn></msub>");
+    }
+
+    /// The UR5's factors read as the textbook names them.
+    #[test]
+    fn ur5_factors_are_named() {
+        let (chain, options) =
+            crate::robots::load("ur5", &crate::robots::UrdfArgs::default()).unwrap();
+        let derived = kinegen_core::derive(&chain, &options);
+        let dets = crate::det_hook::determinants(&chain, &derived);
+        let named: Vec<(String, String)> = dets
+            .det
+            .unwrap()
+            .factors
+            .iter()
+            .map(|f| (f.text.clone(), meaning(&chain, f)))
+            .collect();
+        let of = |t: &str| &named.iter().find(|(x, _)| x == t).unwrap().1;
+        assert!(of("sin(q3)").contains("elbow"), "{named:?}");
+        assert!(of("sin(q5)").contains("wrist"), "{named:?}");
+        assert!(of("a2").contains("constant"), "{named:?}");
+        let shoulder = named.iter().find(|(t, _)| t.contains("d5")).unwrap();
+        assert!(shoulder.1.contains("shoulder"), "{named:?}");
     }
 }
