@@ -4,7 +4,8 @@
 #   1. installs what is missing: Debian's chromium and chromium-driver (apt-get,
 #      non-interactive), selenium and Pillow from PyPI into the Python venv under the
 #      target dir (kinegen-py/ci.sh's, created here when absent);
-#   2. writes the report of the UR5, the PUMA 560 and the FANUC LR Mate 200iB URDF;
+#   2. writes the report of the UR5, the PUMA 560 and the FANUC LR Mate 200iB URDF
+#      (with $KINEGEN_BIN when set, else a debug build of the command);
 #   3. loads each in headless Chromium (report_browser.py): fails on a console error, a
 #      <math> not laid out as MathML, an empty <svg> or a blank screenshot.
 # Screenshots and pages stay in $CARGO_TARGET_DIR/report-browser (never tracked files).
@@ -31,10 +32,14 @@ fi
 "$venv/bin/python" -m pip install --quiet selenium pillow
 echo "report_browser.sh: browser and driver ready ($((SECONDS - start)) s)" >&2
 
-cargo build -q -p kinegen-cli --bin kinegen
+# CI passes the debug binary the test suite built (KINEGEN_BIN); by hand it is built here.
+kinegen="${KINEGEN_BIN:-}"
+if [ -z "$kinegen" ]; then
+    cargo build -q -p kinegen-cli --bin kinegen
+    kinegen="$target/debug/kinegen"
+fi
 rm -rf "$out"
 mkdir -p "$out"
-kinegen="$target/debug/kinegen"
 "$kinegen" report ur5 -o "$out/ur5.html"
 "$kinegen" report puma560 -o "$out/puma560.html"
 "$kinegen" report robots/urdf/fanucLRMate200ib.urdf --tip tool0 -o "$out/fanuc_lrmate200ib.html"
