@@ -241,6 +241,36 @@ fn pages_are_valid_html5_with_every_formula_as_mathml_and_pictures_drawn() {
     }
 }
 
+/// Every shipped robot — planar arms, a SCARA, 7-joint arms, robots without a square
+/// Jacobian — gets a page that parses without an error, whose pictures draw (or a note
+/// says why there is none), and that has its closed forms as MathML.
+#[test]
+fn every_shipped_robot_has_a_valid_page() {
+    for robot in kinegen_cli::robots::names() {
+        let html = report(&format!("all-{robot}"), &[robot.to_string()]);
+        let dom = parse(&html);
+        assert!(dom.errors.is_empty(), "{robot}: {:?}", dom.errors);
+        let mut all = Vec::new();
+        elements(&dom.document, &mut all);
+        assert!(
+            all.iter().filter(|e| tag(e) == "math").count() > 10,
+            "{robot}"
+        );
+        for s in all.iter().filter(|e| tag(e) == "svg") {
+            let mut inside = Vec::new();
+            elements(s, &mut inside);
+            let drawn = inside
+                .iter()
+                .filter(|e| ["rect", "polyline", "circle", "line"].contains(&tag(e).as_str()))
+                .count();
+            assert!(
+                drawn >= 10,
+                "{robot}: an <svg> with {drawn} drawing elements"
+            );
+        }
+    }
+}
+
 /// Exit 2 with the reason on stderr, nothing on stdout.
 fn fails(args: &[&str]) -> String {
     let out = kinegen().args(args).assert().code(2).stdout("");
