@@ -40,28 +40,46 @@ pub enum What {
 /// One named formula: `lhs = meaning = rhs` (the meaning, when known, in words of
 /// the joint angles: `cos(q2 + q3)`).
 #[derive(Clone, Debug, PartialEq)]
-struct Line {
-    text_lhs: String,
-    latex_lhs: String,
-    meaning: Option<(String, String)>,
+pub struct Line {
+    /// The name as text (`c23`, `T[0][3]`, `det J`).
+    pub text_lhs: String,
+    /// The name as LaTeX.
+    pub latex_lhs: String,
+    /// What it means, `(text, LaTeX)`.
+    pub meaning: Option<(String, String)>,
     /// Rust-syntax formula (rendered with `kinegen_core::latex`), or `None` when the
     /// meaning is the whole definition (`s1 = sin(q1)`).
-    rust: Option<String>,
+    pub rust: Option<String>,
 }
 
 /// One output with its definitions.
 #[derive(Clone, Debug)]
-struct Section {
-    title: String,
-    ops: Option<OpCount>,
+pub struct Section {
+    /// What the output is.
+    pub title: String,
+    /// Operation counts of its code.
+    pub ops: Option<OpCount>,
     /// Shown when the section has no formulas (a missing determinant).
-    note: Option<String>,
-    defs: Vec<Line>,
-    entries: Vec<Line>,
+    pub note: Option<String>,
+    /// Inputs and shared intermediates.
+    pub defs: Vec<Line>,
+    /// The outputs.
+    pub entries: Vec<Line>,
 }
 
 /// The text of `show` for `what`; `latex` selects a LaTeX document body.
 pub fn show(chain: &Chain, model: &Model, dets: &Determinants, what: What, latex: bool) -> String {
+    let sections = sections(chain, model, dets, what);
+    if latex {
+        render_latex(chain, &sections)
+    } else {
+        render_text(chain, &sections)
+    }
+}
+
+/// The sections `show` prints for `what` (also the report's formulas), before any
+/// printer: one source for the terminal, LaTeX and the HTML page.
+pub fn sections(chain: &Chain, model: &Model, dets: &Determinants, what: What) -> Vec<Section> {
     let coder = Coder::new(chain, &model.sym);
     let want = |w: What| what == w || what == What::All;
     let n = chain.dof();
@@ -175,11 +193,7 @@ pub fn show(chain: &Chain, model: &Model, dets: &Determinants, what: What, latex
             sections.push(missing("Singularities", &dets.missing));
         }
     }
-    if latex {
-        render_latex(chain, &sections)
-    } else {
-        render_text(chain, &sections)
-    }
+    sections
 }
 
 fn missing(title: &str, why: &str) -> Section {

@@ -8,6 +8,8 @@
 //!   [--near FILE.json]` — every closed-form IK solution
 //! - `kinegen reach ROBOT [--resolution 0.08] [--orientations 50|DxR] [-o map.npz]
 //!   [--slices DIR]` — a reachability map; `--inverse TASK.json` — base placement
+//! - `kinegen report ROBOT [-o FILE.html]` — one self-contained HTML page: the formulas
+//!   as MathML, the singularity map, the IK solutions and a trajectory as SVG, the stats
 //!
 //! ROBOT is a TOML file (`robots/ur5.toml`), a URDF file (`arm.urdf`, with `--base`,
 //! `--tip`, `--snap`; without them the root link and the only leaf) or the name of a
@@ -22,6 +24,7 @@ pub mod formulas;
 pub mod ik;
 pub mod model;
 pub mod reach;
+pub mod report;
 pub mod robots;
 pub mod stats;
 
@@ -199,6 +202,22 @@ pub enum Command {
         #[arg(long)]
         free: Option<usize>,
     },
+    /// One self-contained HTML page (no script, no network): the robot as read, the
+    /// closed forms as MathML, det J and its singular factors, the IK family and the
+    /// solutions of one pose, the second order, pictures as SVG, the operation counts.
+    Report {
+        /// A TOML or URDF file, or a shipped robot's name.
+        robot: String,
+        /// Which chain of a URDF, and how to snap its numbers.
+        #[command(flatten)]
+        urdf: UrdfArgs,
+        /// The page to write (default: `<robot name>.html` in the current directory).
+        #[arg(short, long)]
+        output: Option<std::path::PathBuf>,
+        /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free.
+        #[arg(long)]
+        free: Option<usize>,
+    },
 }
 
 /// Run a parsed command; `Ok` is the text for stdout.
@@ -325,6 +344,16 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
                 progress: true,
             };
             reach::run(&chain, &derived, &request)
+        }
+        Command::Report {
+            robot,
+            urdf,
+            output,
+            free,
+        } => {
+            let (chain, options) = robots::load(robot, urdf)?;
+            let options = with_free(options, &chain, *free)?;
+            report::run(&chain, &options, output.as_deref())
         }
     }
 }

@@ -6,6 +6,7 @@ use std::fmt::Write;
 use crate::chain::Chain;
 use crate::emit::angle_names::AngleName;
 use crate::emit::code::Body;
+use crate::emit::mathml;
 
 /// The robot type's rustdoc: what the robot is, the front end's summary (a DH table),
 /// and how the formulas name the joint angles.
@@ -68,6 +69,45 @@ pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
         let _ = writeln!(s, "{n} = {e}");
     }
     s.push_str("```");
+    s
+}
+
+/// A function's doc as [`formula_doc`], then the same formulas as MathML (one
+/// `<math>` per line, in an HTML block rustdoc passes through), so the rendered docs
+/// show mathematics beside the text form. For the first-order outputs (FK, Jacobian):
+/// the second-order ones are long enough that the text alone is kept.
+pub fn formula_doc_with_math(summary: &str, body: &Body, names: &[String]) -> String {
+    let mut lines = Vec::new();
+    for (n, e) in &body.defs {
+        let mut rhs = Vec::new();
+        if let Some(m) = AngleName::parse(n) {
+            rhs.push(mathml::to_mathml(&m.text()).unwrap_or_else(|_| mathml::mtext(&m.text())));
+        }
+        rhs.push(mathml::to_mathml(e).unwrap_or_else(|_| mathml::mtext(e)));
+        lines.push(mathml::equation(&mathml::mathml_name(n), &rhs));
+    }
+    for (n, e) in names.iter().zip(&body.outputs) {
+        let rhs = mathml::to_mathml(e).unwrap_or_else(|_| mathml::mtext(e));
+        lines.push(mathml::equation(&mathml::mathml_lhs(n), &[rhs]));
+    }
+    format!(
+        "{}
+
+{}",
+        formula_doc(summary, body, names),
+        math_block(&lines)
+    )
+}
+
+/// MathML equations (each an element, see [`mathml::equation`]) as an HTML block of
+/// rustdoc: a `<div>` with one displayed `<math>` per line and no blank line inside,
+/// so markdown leaves it alone.
+pub fn math_block(equations: &[String]) -> String {
+    let mut s = String::from("<div class=\"kinegen-math\">\n");
+    for e in equations {
+        let _ = writeln!(s, "{}", mathml::math(e, true));
+    }
+    s.push_str("</div>");
     s
 }
 

@@ -5,10 +5,11 @@
 use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::emit::code::{Body, Coder, OpCount};
-use crate::emit::docs::{formula_doc, matrix_names};
+use crate::emit::docs::{formula_doc, formula_doc_with_math, math_block, matrix_names};
 use crate::emit::formulas::Formulas;
 use crate::emit::ik::{items as ik_items, CheckImpl, SingularCheck};
 pub use crate::emit::item::{Const, Item, Method, MethodBody};
+use crate::emit::mathml;
 use crate::kinematics::det::closed_form::DetModel;
 use crate::kinematics::det::gradient::DetGradient;
 use crate::kinematics::det::structural::square_rows;
@@ -233,7 +234,7 @@ impl Out<'_> {
     fn fk(&mut self) {
         let body = self.coder.body(&transform_ids(&self.model.fk_rows));
         let names = matrix_names("T", 3, 4);
-        let doc = formula_doc(
+        let doc = formula_doc_with_math(
             "Tool pose in the world frame: `base · A1(q1) ⋯ AN(qN) · tool` (row-major 4×4).",
             &body,
             &names,
@@ -281,7 +282,7 @@ impl Out<'_> {
         let ids: Vec<Id> = self.model.jacobian.iter().flatten().copied().collect();
         let body = self.coder.body(&ids);
         let names = matrix_names("J", 6, n);
-        let doc = formula_doc(
+        let doc = formula_doc_with_math(
             "Geometric Jacobian of the tool point in the world frame, rows `[vx, vy, vz, ωx, ωy, ωz]`.",
             &body,
             &names,
@@ -392,8 +393,12 @@ impl Out<'_> {
         } else {
             "the task Jacobian"
         };
+        let det_math = math_block(&[mathml::equation(
+            "<mrow><mi>det</mi><mo>&#x2061;</mo><mi>J</mi></mrow>",
+            &[mathml::to_mathml(&d.text).unwrap_or_else(|_| mathml::mtext(&d.text))],
+        )]);
         let doc = format!(
-            "Determinant of {which}, in closed form:\n\n```text\ndet J = {}\n```\n\n\
+            "Determinant of {which}, in closed form:\n\n```text\ndet J = {}\n```\n\n{det_math}\n\n\
              In LaTeX: [`Self::DET_LATEX`].\n\n\
              Rows `[vx vy vz ωx ωy ωz]` (linear velocity of the tool point); the value does not depend on \
              the frame the Jacobian is expressed in nor on the reference point. Signs follow the \
@@ -416,9 +421,18 @@ impl Out<'_> {
             .iter()
             .map(|x| format!("{} = 0", x.text))
             .collect();
+        let factor_math: Vec<String> = d
+            .factors
+            .iter()
+            .map(|x| {
+                let f = mathml::to_mathml(&x.text).unwrap_or_else(|_| mathml::mtext(&x.text));
+                mathml::equation(&f, &["<mn>0</mn>".into()])
+            })
+            .collect();
         let doc = format!(
-            "The factors of `det J` ({k}): the Jacobian is singular exactly where one of them is zero.\n\n```text\n{}\n```",
-            list.join("\n")
+            "The factors of `det J` ({k}): the Jacobian is singular exactly where one of them is zero.\n\n```text\n{}\n```\n\n{}",
+            list.join("\n"),
+            math_block(&factor_math)
         );
         let result = format!("[{}]", fbody.outputs.join(", "));
         let ret = format!("[{}; {k}]", self.f());

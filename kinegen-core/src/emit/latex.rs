@@ -1,9 +1,10 @@
-//! Formulas for people: the engine's Rust-syntax formula strings rendered as LaTeX or
-//! as compact plain text.
+//! Formulas for people: the engine's Rust-syntax formula strings rendered as LaTeX (and,
+//! re-exported from [`crate::emit::text`], as compact plain text).
 //!
 //! Formulas come from [`crate::emit::code::Body`] (`c1 * L1 + L2 * c12`). Each is parsed
 //! with `syn` and the tree is printed again with the least parentheses its
-//! precedence needs (the engine's parentheses are Rust's, not the reader's).
+//! precedence needs (the engine's parentheses are Rust's, not the reader's): the walk
+//! is [`crate::emit::walk`]'s, shared with [`crate::emit::mathml`].
 //! Variable names follow the textbooks' subscripts: `c23` → `c_{23}` (= cos(q2 + q3)),
 //! `L1` → `L_{1}`, `s_k1` → `s_{k1}`.
 //!
@@ -13,226 +14,74 @@
 //! assert_eq!(to_text("-(s1 * L1 + t2)").unwrap(), "-(s1·L1 + t2)");
 //! ```
 
-use std::fmt;
 use std::fmt::Write;
 
-use syn::{BinOp, Expr, Lit, UnOp};
-
-use crate::emit::angle_names::AngleName;
-
-/// A formula the renderer does not understand (not produced by the engine).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct FormulaError {
-    /// The formula as given.
-    pub formula: String,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for FormulaError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "cannot render `{}`: {}", self.formula, self.message)
-    }
-}
-
-impl std::error::Error for FormulaError {}
-
-/// Output notation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Style {
-    Latex,
-    Text,
-}
-
-/// Precedence levels, loosest first.
-const SUM: u8 = 1;
-const PRODUCT: u8 = 2;
-const UNARY: u8 = 3;
-const ATOM: u8 = 4;
+pub use crate::emit::text::to_text;
+pub use crate::emit::walk::FormulaError;
+use crate::emit::walk::{self, name_parts, Accent, Base, Node, Style, ATOM};
 
 /// A Rust-syntax formula (`c1 * L1 + L2 * c12`) as LaTeX (`c_{1}\,L_{1} + L_{2}\,c_{12}`).
 ///
 /// Products are juxtaposed with a thin space (`\cdot` before a number), quotients are
-/// `\frac`, `sin`/`cos`/`sqrt` calls become `\sin`/`\cos`/`\sqrt`.
+/// `\frac`, `sin`/`cos`/`sqrt` calls become `\sin`/`\cos`/`\sqrt`, powers `x^{2}`.
 pub fn to_latex(formula: &str) -> Result<String, FormulaError> {
-    render(formula, Style::Latex)
+    walk::render(formula, &Latex)
 }
 
-/// A Rust-syntax formula as compact plain text for a terminal: `c1·L1 + L2·c12`,
-/// integral floats without `.0`, minimal parentheses.
-pub fn to_text(formula: &str) -> Result<String, FormulaError> {
-    render(formula, Style::Text)
-}
+/// The LaTeX style of the shared walk.
+struct Latex;
 
-fn render(formula: &str, style: Style) -> Result<String, FormulaError> {
-    let err = |message: String| FormulaError {
-        formula: formula.to_string(),
-        message,
-    };
-    let expr = syn::parse_str::<Expr>(formula).map_err(|e| err(e.to_string()))?;
-    Printer { style }.expr(&expr).map(|(s, _)| s).map_err(err)
-}
-
-struct Printer {
-    style: Style,
-}
-
-impl Printer {
-    /// The text of `e` and its precedence.
-    fn expr(&self, e: &Expr) -> Result<(String, u8), String> {
-        match e {
-            Expr::Paren(p) => self.expr(&p.expr),
-            Expr::Group(g) => self.expr(&g.expr),
-            Expr::Lit(l) => match &l.lit {
-                Lit::Float(f) => Ok((self.number(f.base10_digits()), ATOM)),
-                Lit::Int(i) => Ok((self.number(i.base10_digits()), ATOM)),
-                other => Err(format!("unexpected literal `{}`", quote::quote!(#other))),
-            },
-            Expr::Path(p) => {
-                let name = p
-                    .path
-                    .segments
-                    .last()
-                    .map(|s| s.ident.to_string())
-                    .ok_or("empty path")?;
-                Ok((self.name(&name), ATOM))
-            }
-            // `self.L1` (parameters as the generated code reads them) is `L1`.
-            Expr::Field(f) => match &f.member {
-                syn::Member::Named(id) => Ok((self.name(&id.to_string()), ATOM)),
-                syn::Member::Unnamed(_) => Err("unexpected tuple field".into()),
-            },
-            Expr::Unary(u) => match u.op {
-                UnOp::Neg(_) => {
-                    let (x, p) = self.expr(&u.expr)?;
-                    // `-(a + b)`, `-(-a)`; a product or atom reads without parentheses.
-                    let x = if p <= SUM || p == UNARY {
-                        self.paren(&x)
-                    } else {
-                        x
-                    };
-                    Ok((format!("-{x}"), UNARY))
-                }
-                _ => Err(format!("unexpected operator `{}`", quote::quote!(#u))),
-            },
-            Expr::Binary(b) => self.binary(b),
-            Expr::Call(c) => {
-                let Expr::Path(p) = &*c.func else {
-                    return Err("unexpected call".into());
-                };
-                let f = p
-                    .path
-                    .segments
-                    .last()
-                    .map(|s| s.ident.to_string())
-                    .ok_or("empty path")?;
-                let args = c
-                    .args
-                    .iter()
-                    .map(|a| self.expr(a).map(|(s, _)| s))
-                    .collect::<Result<Vec<_>, _>>()?;
-                Ok((self.call(&f, &args), ATOM))
-            }
-            Expr::MethodCall(m) if m.args.is_empty() => {
-                // `x.sqrt()`, `x.sin()`.
-                let (x, _) = self.expr(&m.receiver)?;
-                Ok((self.call(&m.method.to_string(), &[x]), ATOM))
-            }
-            other => Err(format!(
-                "unsupported expression `{}`",
-                quote::quote!(#other)
-            )),
-        }
-    }
-
-    fn binary(&self, b: &syn::ExprBinary) -> Result<(String, u8), String> {
-        let (x, px) = self.expr(&b.left)?;
-        let (y, py) = self.expr(&b.right)?;
-        match b.op {
-            BinOp::Add(_) => {
-                // `a + (-b)`: keep the sign visible rather than silently rewriting.
-                let y = if py == UNARY { self.paren(&y) } else { y };
-                Ok((format!("{x} + {y}"), SUM))
-            }
-            BinOp::Sub(_) => {
-                let y = if py <= SUM || py == UNARY {
-                    self.paren(&y)
-                } else {
-                    y
-                };
-                Ok((format!("{x} - {y}"), SUM))
-            }
-            BinOp::Mul(_) => {
-                // A leading minus reads as the whole product's sign: `-a b`.
-                let x = if px <= SUM { self.paren(&x) } else { x };
-                let y = if py <= SUM || py == UNARY {
-                    self.paren(&y)
-                } else {
-                    y
-                };
-                let sep = match self.style {
-                    Style::Latex if y.starts_with(|c: char| c.is_ascii_digit()) => r" \cdot ",
-                    Style::Latex => r"\,",
-                    Style::Text => "·",
-                };
-                Ok((format!("{x}{sep}{y}"), PRODUCT))
-            }
-            BinOp::Div(_) => match self.style {
-                Style::Latex => Ok((format!(r"\frac{{{x}}}{{{y}}}"), ATOM)),
-                Style::Text => {
-                    let x = if px <= SUM { self.paren(&x) } else { x };
-                    let y = if py < ATOM { self.paren(&y) } else { y };
-                    Ok((format!("{x}/{y}"), PRODUCT))
-                }
-            },
-            _ => Err(format!("unsupported operator `{}`", quote::quote!(#b))),
-        }
-    }
-
-    fn paren(&self, s: &str) -> String {
-        match self.style {
-            Style::Latex => format!(r"\left({s}\right)"),
-            Style::Text => format!("({s})"),
-        }
-    }
-
-    fn call(&self, f: &str, args: &[String]) -> String {
-        match (self.style, f, args) {
-            (Style::Latex, "sqrt", [x]) => format!(r"\sqrt{{{x}}}"),
-            (Style::Latex, "sin" | "cos" | "tan", [x]) => format!(r"\{f}\left({x}\right)"),
-            (Style::Latex, _, _) => {
-                format!(r"\operatorname{{{f}}}\left({}\right)", args.join(", "))
-            }
-            (Style::Text, _, _) => format!("{f}({})", args.join(", ")),
-        }
-    }
-
-    /// A number as written, without a float's `.0` (`1.0` → `1`); LaTeX exponents
-    /// as powers of ten.
+impl Style for Latex {
+    /// A number as written, without a float's `.0` (`1.0` → `1`); exponents as powers
+    /// of ten.
     fn number(&self, digits: &str) -> String {
         let s = digits.strip_suffix(".0").unwrap_or(digits);
-        match (self.style, s.split_once(['e', 'E'])) {
-            (Style::Latex, Some((m, e))) => {
+        match s.split_once(['e', 'E']) {
+            Some((m, e)) => {
                 let m = m.strip_suffix(".0").unwrap_or(m);
                 format!(r"{m} \times 10^{{{e}}}")
             }
-            _ => s.to_string(),
+            None => s.to_string(),
         }
     }
 
     fn name(&self, name: &str) -> String {
-        match self.style {
-            Style::Latex => latex_name(name),
-            Style::Text => name.to_string(),
+        latex_name(name)
+    }
+
+    fn paren(&self, s: &str) -> String {
+        format!(r"\left({s}\right)")
+    }
+
+    fn neg(&self, x: &str) -> String {
+        format!("-{x}")
+    }
+
+    fn sum(&self, x: &str, minus: bool, y: &str) -> String {
+        format!("{x} {} {y}", if minus { '-' } else { '+' })
+    }
+
+    fn product(&self, x: &str, y: &str, y_number: bool) -> String {
+        let sep = if y_number { r" \cdot " } else { r"\," };
+        format!("{x}{sep}{y}")
+    }
+
+    fn quotient(&self, x: &Node, y: &Node) -> Node {
+        Node::new(format!(r"\frac{{{}}}{{{}}}", x.text, y.text), ATOM)
+    }
+
+    fn call(&self, f: &str, args: &[String]) -> String {
+        match (f, args) {
+            ("sqrt", [x]) => format!(r"\sqrt{{{x}}}"),
+            ("sin" | "cos" | "tan", [x]) => format!(r"\{f}\left({x}\right)"),
+            _ => format!(r"\operatorname{{{f}}}\left({}\right)", args.join(", ")),
         }
     }
-}
 
-const GREEK: &[&str] = &[
-    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
-    "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi",
-    "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
-];
+    fn power(&self, base: &str, exp: &str) -> String {
+        format!("{base}^{{{exp}}}")
+    }
+}
 
 /// A variable name in textbook notation: `c23` → `c_{23}`, `L1` → `L_{1}`,
 /// `s_k1` → `s_{k1}`, `c1_2` → `c_{1,2}` (angle sums of robots with ten or more joints),
@@ -240,41 +89,22 @@ const GREEK: &[&str] = &[
 /// `\dot{q}_{3}`, the negated angle sums of generated code `nc23` → `\bar{c}_{23}`
 /// (= −c₂₃), and differences `c2m3` → `c_{2-3}` (= cos(q₂ − q₃)).
 pub fn latex_name(name: &str) -> String {
-    if let Some(sum) = AngleName::parse(name) {
-        let f = if sum.sin { "s" } else { "c" };
-        let f = match sum.negated {
-            true => format!(r"\bar{{{f}}}"),
-            false => f.to_string(),
-        };
-        return format!("{f}_{{{}}}", sum.latex_subscript(name));
-    }
-    // Joint rates `qd3` are q̇₃.
-    if let Some(j) = name.strip_prefix("qd") {
-        if !j.is_empty() && j.bytes().all(|b| b.is_ascii_digit()) {
-            return format!(r"\dot{{q}}_{{{j}}}");
-        }
-    }
-    // Base: the leading letters; subscript: the rest, without a leading `_`, with
-    // further `_` as separators.
-    let cut = name
-        .find(|c: char| !c.is_ascii_alphabetic())
-        .unwrap_or(name.len());
-    let (base, rest) = name.split_at(cut);
-    if base.is_empty() {
-        return format!(r"\mathrm{{{}}}", name.replace('_', r"\_"));
-    }
-    let sub = rest.strip_prefix('_').unwrap_or(rest).replace('_', ",");
-    let base = if GREEK.contains(&base) {
-        format!(r"\{base}")
-    } else if base.chars().count() > 1 {
-        format!(r"\mathrm{{{base}}}")
-    } else {
-        base.to_string()
+    let parts = name_parts(name);
+    let base = match &parts.base {
+        Base::Letter(l) => l.clone(),
+        Base::Greek(g) => format!(r"\{g}"),
+        Base::Word(w) => format!(r"\mathrm{{{w}}}"),
+        Base::Raw(r) => return format!(r"\mathrm{{{}}}", r.replace('_', r"\_")),
     };
-    if sub.is_empty() {
+    let base = match parts.accent {
+        Accent::None => base,
+        Accent::Bar => format!(r"\bar{{{base}}}"),
+        Accent::Dot => format!(r"\dot{{{base}}}"),
+    };
+    if parts.sub.is_empty() {
         base
     } else {
-        format!("{base}_{{{sub}}}")
+        format!("{base}_{{{}}}", parts.sub)
     }
 }
 

@@ -7,8 +7,9 @@
 //!   constants — as values; [`second_order`] its second-order methods.
 //! - [`item`]: a method or a constant of the generated `impl`, as a value.
 //! - [`ik`]: the closed-form IK methods and constants.
-//! - [`docs`], [`formulas`], [`latex`]: the closed forms for people (rustdoc,
-//!   `FORMULAS`, LaTeX).
+//! - [`docs`], [`formulas`]: the closed forms for people (rustdoc, `FORMULAS`), printed
+//!   by [`walk`] — one walk over a formula — in three styles: [`text`], [`latex`],
+//!   [`mathml`] (one output form per file).
 //! - [`rust`]: the item printed and parsed into tokens.
 
 pub mod angle_names;
@@ -19,5 +20,8 @@ pub mod functions;
 pub mod ik;
 pub mod item;
 pub mod latex;
+pub mod mathml;
 pub mod rust;
 pub mod second_order;
+pub mod text;
+pub mod walk;

@@ -1,0 +1,242 @@
+//! The closed forms as MathML, each with its plain-text form under it: FK and the
+//! Jacobian (the sections `show` prints, from [`crate::formulas::sections`]), det J,
+//! each singular factor with what it means, and the second order (`J̇ q̇`).
+
+use std::fmt::Write;
+
+use kinegen_core::emit::code::{Coder, OpCount};
+use kinegen_core::emit::mathml::{self, escape, math, mathml_lhs, mtext};
+use kinegen_core::emit::text::to_text;
+use kinegen_core::{Chain, Derived};
+
+use super::html::{self, Section};
+use crate::det_hook::{Determinants, Factor};
+use crate::formulas::{sections, Line, What};
+
+/// FK, the Jacobian(s) and det J.
+pub fn first_order(chain: &Chain, derived: &Derived, dets: &Determinants) -> Section {
+    let mut body = html::p(
+        "Joint angles enter as s_i = sin(q_i), c_i = cos(q_i); c23 = cos(q2 + q3) (a subtracted \
+         joint: c2m3 = cos(q2 − q3)). Each output lists the inputs and shared intermediates it \
+         reads, then its entries, as the generated function computes them.",
+    );
+    for what in [What::Fk, What::Jacobian, What::Det] {
+        for sec in sections(chain, &derived.model, dets, what) {
+            let _ = writeln!(body, "<h3>{}</h3>", escape(&sec.title));
+            if let Some(o) = &sec.ops {
+                body.push_str(&html::p(&ops_text(o)));
+            }
+            if let Some(n) = &sec.note {
+                body.push_str(&html::note(n));
+            }
+            if !sec.defs.is_empty() {
+                body.push_str("<p>where</p>\n");
+                for l in &sec.defs {
+                    body.push_str(&line(l));
+                }
+            }
+            for l in &sec.entries {
+                body.push_str(&line(l));
+            }
+        }
+    }
+    Section {
+        id: "formulas",
+        title: "Forward kinematics, Jacobian, determinant".into(),
+        body,
+    }
+}
+
+/// Where det J vanishes: each factor `= 0` with the joints it involves and what that
+/// kind of factor means.
+pub fn singular_factors(chain: &Chain, dets: &Determinants) -> Section {
+    let mut body = String::new();
+    let list = [("det J", &dets.det), ("det Jt", &dets.det_task)];
+    let mut any = false;
+    for (name, d) in list {
+        let Some(d) = d else { continue };
+        any = true;
+        body.push_str(&html::p(&format!(
+            "{name} = 0 exactly where one of these factors is zero:"
+        )));
+        for f in &d.factors {
+            let lhs = mathml::to_mathml(&f.text).unwrap_or_else(|_| mtext(&f.text));
+            let eq = math(&mathml::equation(&lhs, &["<mn>0</mn>".into()]), false);
+            let power = if f.power > 1 {
+                format!(" (power {})", f.power)
+            } else {
+                String::new()
+            };
+            body.push_str(&html::equation(
+                &eq,
+                &format!("{} = 0{power}: {}", f.text, meaning(chain, f)),
+            ));
+        }
+    }
+    if !any {
+        body.push_str(&html::note(&format!("Determinant {}", dets.missing)));
+    }
+    Section {
+        id: "singularities",
+        title: "Singular factors".into(),
+        body,
+    }
+}
+
+/// What a factor's zero set is, read from the joints it involves (the usual names of
+/// a 6R arm's singularities): a constant (the robot's lengths: never zero here, or det
+/// J would vanish everywhere), the last three joints only (wrist), joint 3 alone
+/// (elbow), joint 2 or 3 with others (shoulder).
+pub fn meaning(chain: &Chain, f: &Factor) -> String {
+    let n = chain.dof();
+    let joints: Vec<String> = f.joints.iter().map(|j| format!("q{j}")).collect();
+    let kind = if f.joints.is_empty() {
+        return "a constant of the robot's lengths, not zero for this robot (else det J would \
+                vanish at every q); zero only for a robot with that length 0"
+            .into();
+    } else if n >= 6 && f.joints.iter().all(|&j| j + 3 > n) {
+        "wrist singularity: the wrist's axes line up and it loses a rotation"
+    } else if f.joints.len() == 1 && f.joints[0] == 3 {
+        "elbow singularity: the arm stretched out or folded back"
+    } else if f.joints.iter().any(|&j| j == 2 || j == 3) {
+        "shoulder singularity (it involves the arm's position joints): the point the arm \
+         positions meets an axis of the shoulder and cannot be moved in every direction"
+    } else {
+        "joints of the arm and the wrist together"
+    };
+    format!("depends on {}; {kind}", joints.join(", "))
+}
+
+/// The second-order bias acceleration `J̇ q̇` (its non-zero entries; the counts of the
+/// other second-order outputs are in the stats section).
+pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
+    let mut body = String::new();
+    let s = &derived.second;
+    match &s.at_run_time {
+        Some(why) => body.push_str(&html::note(&format!(
+            "Not in closed form ({why}); the generated methods compute the second order at \
+             run time from the Jacobian's columns."
+        ))),
+        None => {
+            let coder = Coder::new(chain, &derived.model.sym);
+            let body_ = coder.body(&s.jdot_qdot);
+            body.push_str(&html::p(&format!(
+                "Bias acceleration J̇(q, q̇)·q̇ in the world frame, [ax ay az αx αy αz]: the tool's \
+                 acceleration at q̈ = 0, so that ẍ = J·q̈ + J̇·q̇ ({}). q̇_i is joint i's rate.",
+                ops_text(&body_.ops)
+            )));
+            body.push_str("<p>where</p>\n");
+            for (n, f) in &body_.defs {
+                body.push_str(&line(&Line {
+                    text_lhs: n.clone(),
+                    latex_lhs: String::new(),
+                    meaning: kinegen_core::emit::docs::angle_sum_meaning(n)
+                        .map(|m| (m.replace('−', "-"), String::new())),
+                    rust: Some(f.clone()),
+                }));
+            }
+            let zero = coder.lit(0.0);
+            for (r, f) in body_.outputs.iter().enumerate() {
+                if *f == zero {
+                    continue;
+                }
+                body.push_str(&line(&Line {
+                    text_lhs: format!("Jdot_qdot[{r}]"),
+                    latex_lhs: String::new(),
+                    meaning: None,
+                    rust: Some(f.clone()),
+                }));
+            }
+        }
+    }
+    Section {
+        id: "second-order",
+        title: "Second order".into(),
+        body,
+    }
+}
+
+/// `det J`, `J̇q̇[r]`, and the names of [`mathml_lhs`] (`T[0][3]` → T with subscript
+/// 1,4: 1-based, as the LaTeX form).
+fn lhs(name: &str) -> String {
+    if let Some(r) = name.strip_prefix("Jdot_qdot[") {
+        let r: usize = r.trim_end_matches(']').parse().unwrap_or(0);
+        return format!(
+            "<msub><mrow><mover accent=\"true\"><mi>J</mi><mo>&#x2D9;</mo></mover>\
+             <mover accent=\"true\"><mi>q</mi><mo>&#x2D9;</mo></mover></mrow><mn>{}</mn></msub>",
+            r + 1
+        );
+    }
+    match name {
+        "det J" => "<mrow><mi>det</mi><mo>&#x2061;</mo><mi>J</mi></mrow>".into(),
+        "det Jt" => {
+            "<mrow><mi>det</mi><mo>&#x2061;</mo><msub><mi>J</mi><mi>t</mi></msub></mrow>".into()
+        }
+        n => mathml_lhs(n),
+    }
+}
+
+/// One `lhs = meaning = formula` line: MathML, and the text form under it.
+fn line(l: &Line) -> String {
+    let mut rhs = Vec::new();
+    let mut text = vec![l.text_lhs.clone()];
+    if let Some((m, _)) = &l.meaning {
+        rhs.push(mathml::to_mathml(m).unwrap_or_else(|_| mtext(m)));
+        text.push(m.clone());
+    }
+    if let Some(r) = &l.rust {
+        rhs.push(mathml::to_mathml(r).unwrap_or_else(|_| mtext(r)));
+        text.push(to_text(r).unwrap_or_else(|_| r.clone()));
+    }
+    let eq = math(&mathml::equation(&lhs(&l.text_lhs), &rhs), false);
+    html::equation(&eq, &text.join(" = "))
+}
+
+/// `19 operations: 8 add, 11 mul, 0 div, 0 neg; 2 sin_cos`.
+pub fn ops_text(o: &OpCount) -> String {
+    format!(
+        "{} operations: {} add, {} mul, {} div, {} neg; {} sin_cos",
+        o.total(),
+        o.add,
+        o.mul,
+        o.div,
+        o.neg,
+        o.trig
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matrix_entries_are_one_based_like_the_latex() {
+        assert_eq!(
+            lhs("T[0][3]"),
+            "<msub><mi>T</mi><mrow><mn>1</mn><mo>,</mo><mn>4</mn></mrow></msub>"
+        );
+        assert_eq!(lhs("c23"), "<msub><mi>c</mi><mn>23</mn></msub>");
+    }
+
+    /// The UR5's factors read as the textbook names them.
+    #[test]
+    fn ur5_factors_are_named() {
+        let (chain, options) =
+            crate::robots::load("ur5", &crate::robots::UrdfArgs::default()).unwrap();
+        let derived = kinegen_core::derive(&chain, &options);
+        let dets = crate::det_hook::determinants(&chain, &derived);
+        let named: Vec<(String, String)> = dets
+            .det
+            .unwrap()
+            .factors
+            .iter()
+            .map(|f| (f.text.clone(), meaning(&chain, f)))
+            .collect();
+        let of = |t: &str| &named.iter().find(|(x, _)| x == t).unwrap().1;
+        assert!(of("sin(q3)").contains("elbow"), "{named:?}");
+        assert!(of("sin(q5)").contains("wrist"), "{named:?}");
+        assert!(of("a2").contains("constant"), "{named:?}");
+        let shoulder = named.iter().find(|(t, _)| t.contains("d5")).unwrap();
+        assert!(shoulder.1.contains("shoulder"), "{named:?}");
+    }
+}
