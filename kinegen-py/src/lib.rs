@@ -767,6 +767,35 @@ impl Robot {
         }
     }
 
+    /// The robot, det J and its singular factors for Jupyter: the `kinegen report`
+    /// page's MathML and plain text (the same printer), in one `<div>`.
+    fn _repr_html_(&self) -> String {
+        use kinegen_cli::report::{formulas as page, html};
+        use kinegen_core::emit::mathml;
+        let i = &self.inner;
+        let family = i
+            .derived
+            .ik
+            .as_ref()
+            .map_or("none".to_string(), |m| m.plan.name.clone());
+        let mut s = String::from("<div class=\"kinegen\">\n");
+        s.push_str(&html::p(&format!(
+            "{}: {} joints; closed-form IK: {family}",
+            i.chain.name,
+            i.chain.dof()
+        )));
+        let det = (i.dets.det.as_ref().map(|d| ("det J", d)))
+            .or_else(|| i.dets.det_task.as_ref().map(|d| ("det Jt", d)));
+        if let Some((name, d)) = det {
+            let rhs = mathml::to_mathml(&d.text).unwrap_or_else(|_| mathml::mtext(&d.text));
+            let eq = mathml::math(&mathml::equation(&page::lhs(name), &[rhs]), true);
+            s.push_str(&html::equation(&eq, &format!("{name} = {}", d.text)));
+        }
+        s.push_str(&page::singular_factors(&i.chain, &i.dets).body);
+        s.push_str("</div>\n");
+        s
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<kinegen.Robot {:?}: {} joints>",

@@ -414,6 +414,27 @@ def test_text_outputs(ur5):
     assert r.startswith("$\\det J = ") and r.endswith("$")
 
 
+def test_html_shows_det_and_every_factor_as_mathml(shipped):
+    # Jupyter's rich display: well-formed markup (parsed as XML here), det J as one
+    # displayed <math> and one <math> per singular factor, each factor's text beside it.
+    import xml.etree.ElementTree as ET
+
+    for name, r in shipped.items():
+        html = r._repr_html_()
+        root = ET.fromstring(html)
+        maths = [e for e in root.iter() if e.tag == "math"]
+        factors = r.det_factors
+        if factors:  # det J, or a planar arm's square task Jacobian's det
+            assert sum(m.get("display") == "block" for m in maths) == 1, name
+            assert len(maths) == 1 + len(factors), name
+            for text, _, _ in factors:
+                assert f"{text} = 0" in html, (name, text)
+            # Every formula is laid out from tokens, not left as plain text.
+            assert all(m.find(".//mtext") is None for m in maths[:1]), name
+        else:
+            assert not maths and "Determinant" in html, name
+
+
 # ---------------------------------------------------------------------------------------
 # Errors
 

@@ -158,7 +158,7 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
 
 /// `det J`, `J̇q̇[r]`, and the names of [`mathml_lhs`] (`T[0][3]` → T with subscript
 /// 1,4: 1-based, as the LaTeX form).
-fn lhs(name: &str) -> String {
+pub fn lhs(name: &str) -> String {
     if let Some(r) = name.strip_prefix("Jdot_qdot[") {
         let r: usize = r.trim_end_matches(']').parse().unwrap_or(0);
         return format!(

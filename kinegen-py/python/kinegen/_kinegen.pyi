@@ -109,5 +109,7 @@ class Robot:
     def rust(self) -> str:
         """The generated Rust code (``kinegen rust``)."""
     def _repr_latex_(self) -> str: ...
+    def _repr_html_(self) -> str:
+        """det J and its singular factors as MathML (the report's printer)."""
     def _reference(self, which: str, q: npt.ArrayLike) -> _F64:
         """fk, jacobian or jacobian_ee at one q by walking the engine's graph (flat)."""
