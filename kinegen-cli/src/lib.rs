@@ -217,6 +217,11 @@ pub enum Command {
         /// For a 7-joint arm: the joint (1-based) the closed-form IK leaves free.
         #[arg(long)]
         free: Option<usize>,
+        /// Add the reachability map's plane through the base, computed at this voxel
+        /// spacing in metres (as `kinegen reach --resolution`; 0.08 takes about a second
+        /// for a 6-joint arm).
+        #[arg(long, value_name = "RESOLUTION")]
+        reach: Option<f64>,
     },
 }
 
@@ -350,10 +355,11 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
             urdf,
             output,
             free,
+            reach,
         } => {
             let (chain, options) = robots::load(robot, urdf)?;
             let options = with_free(options, &chain, *free)?;
-            report::run(&chain, &options, output.as_deref())
+            report::run(&chain, &options, output.as_deref(), *reach)
         }
     }
 }

@@ -338,3 +338,53 @@ fn the_validity_check_sees_errors() {
     assert!(!parse(&page("<p>a</b>")).errors.is_empty());
     assert!(parse(&page("<p>a</p>")).errors.is_empty());
 }
+
+/// `--reach`: the reachability map's plane through the base on the page — the
+/// reachability index and one picture per singular factor, each drawing reachable
+/// (coloured) and unreachable (grey) voxels; the page stays valid. A bad spacing exits 2
+/// before anything is written.
+#[test]
+fn the_reachability_map_is_on_the_page_when_asked() {
+    let plain = report("no-reach", &["ur5".into()]);
+    assert!(
+        plain.contains("--reach 0.08"),
+        "the page says how to add it"
+    );
+    let html = report("reach", &["ur5".into(), "--reach".into(), "0.25".into()]);
+    let dom = parse(&html);
+    assert!(dom.errors.is_empty(), "{:?}", dom.errors);
+    let mut all = Vec::new();
+    elements(&dom.document, &mut all);
+    let section = all
+        .iter()
+        .find(|e| attr(e, "id").as_deref() == Some("reachability"))
+        .expect("a reachability section");
+    let mut inside = Vec::new();
+    elements(section, &mut inside);
+    let svgs: Vec<_> = inside.iter().filter(|e| tag(e) == "svg").collect();
+    // The index and the UR5's three joint-dependent factors.
+    assert_eq!(svgs.len(), 4, "{}", text(section));
+    for s in svgs {
+        let mut cells = Vec::new();
+        elements(s, &mut cells);
+        let fills: Vec<String> = cells
+            .iter()
+            .filter(|e| tag(e) == "rect")
+            .filter_map(|e| attr(e, "fill"))
+            .collect();
+        assert!(fills.iter().any(|f| f == "#e1e1e1"), "no unreachable voxel");
+        assert!(
+            fills
+                .iter()
+                .filter(|f| *f != "#e1e1e1" && *f != "white" && *f != "#fff")
+                .count()
+                >= 10,
+            "too few reachable voxels: {fills:?}"
+        );
+    }
+    let dir = scratch("reach-bad");
+    let out = dir.join("ur5.html");
+    let e = fails(&["report", "ur5", "--reach", "0", "-o", out.to_str().unwrap()]);
+    assert!(e.contains("--reach 0: must be a positive number"), "{e}");
+    assert!(files(&dir).is_empty());
+}

@@ -94,7 +94,8 @@ def main() -> int:
             driver.execute_script("document.getElementById('singularities').scrollIntoView()")
             shots.append(out / f"{name}-singular-view.png")
             driver.save_screenshot(str(shots[-1]))
-            for sid in ["singularities", "singularity-map", "stick-figures", "trajectory"]:
+            for sid in ["singularities", "singularity-map", "stick-figures", "trajectory",
+                        "reachability"]:
                 found = driver.find_elements(By.ID, sid)
                 if found:
                     shot = out / f"{name}-{sid}.png"

@@ -4,8 +4,9 @@
 #   1. installs what is missing: Debian's chromium and chromium-driver (apt-get,
 #      non-interactive), selenium and Pillow from PyPI into the Python venv under the
 #      target dir (kinegen-py/ci.sh's, created here when absent);
-#   2. writes the report of the UR5, the PUMA 560 and the FANUC LR Mate 200iB URDF
-#      (with $KINEGEN_BIN when set, else a debug build of the command);
+#   2. writes the report of the UR5 (with its reachability map, `--reach 0.1`), the
+#      PUMA 560 and the FANUC LR Mate 200iB URDF (with $KINEGEN_BIN when set, else a
+#      debug build of the command);
 #   3. loads each in headless Chromium (report_browser.py): fails on a console error, a
 #      <math> not laid out as MathML, an empty <svg> or a blank screenshot.
 # Screenshots and pages stay in $CARGO_TARGET_DIR/report-browser (never tracked files).
@@ -40,7 +41,7 @@ if [ -z "$kinegen" ]; then
 fi
 rm -rf "$out"
 mkdir -p "$out"
-"$kinegen" report ur5 -o "$out/ur5.html"
+"$kinegen" report ur5 --reach 0.1 -o "$out/ur5.html"
 "$kinegen" report puma560 -o "$out/puma560.html"
 "$kinegen" report robots/urdf/fanucLRMate200ib.urdf --tip tool0 -o "$out/fanuc_lrmate200ib.html"
 "$venv/bin/python" kinegen-cli/tests/report_browser.py "$out" \

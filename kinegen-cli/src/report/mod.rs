@@ -9,7 +9,8 @@
 //! and singular factors, second order), [`ik`] (the family, its steps, the solutions
 //! of one pose), [`stick_figures`] (those solutions drawn in two views),
 //! [`singularity_map`] (|det J| over two joints), [`trajectory`] (a quintic between two
-//! solutions), [`stats`] (operation counts and engine time). [`html`] is the page
+//! solutions), [`reach`] (the reachability map's plane through the base, with
+//! `--reach`), [`stats`] (operation counts and engine time). [`html`] is the page
 //! around them, [`svg`] the drawing helpers, [`frames`] the joint positions drawn.
 //! The formulas are printed by `kinegen_core::emit::mathml` (the page only arranges).
 
@@ -17,6 +18,7 @@ pub mod formulas;
 pub mod frames;
 pub mod html;
 pub mod ik;
+pub mod reach;
 pub mod robot;
 pub mod singularity_map;
 pub mod stats;
@@ -33,8 +35,13 @@ use crate::det_hook;
 use crate::error::CliError;
 
 /// The page of `chain`; `stats` are the operation counts and engine time of its
-/// generated code.
-pub fn page(chain: &Chain, derived: &Derived, stats: &crate::stats::Stats) -> String {
+/// generated code, `map` its reachability map where one was asked for (or why none).
+pub fn page(
+    chain: &Chain,
+    derived: &Derived,
+    stats: &crate::stats::Stats,
+    map: Option<&Result<crate::reach::Map, String>>,
+) -> String {
     let dets = det_hook::determinants(chain, derived);
     let solutions = ik::Solutions::of(chain, derived);
     let mut sections = vec![
@@ -46,6 +53,7 @@ pub fn page(chain: &Chain, derived: &Derived, stats: &crate::stats::Stats) -> St
         stick_figures::section(chain, &solutions),
         trajectory::section(chain, &solutions),
         formulas::second_order(chain, derived),
+        reach::section(map),
     ];
     sections.push(stats::section(chain, stats, &dets.missing));
     html::page(chain, &sections)
@@ -53,12 +61,19 @@ pub fn page(chain: &Chain, derived: &Derived, stats: &crate::stats::Stats) -> St
 
 /// Build the report of `chain` and write it to `output` (default `<name>.html` in the
 /// current directory), through a temporary file renamed into place: a failure leaves
-/// no partial page. Returns the line to print.
+/// no partial page. With `reach`, the reachability map at that voxel spacing
+/// (Reuleaux's cube and 50 poses per voxel, every core) is on the page. Returns the line
+/// to print.
 pub fn run(
     chain: &Chain,
     options: &kinegen_core::Options,
     output: Option<&Path>,
+    reach: Option<f64>,
 ) -> Result<String, CliError> {
+    if let Some(r) = reach {
+        crate::reach::grid::check_resolution(r)
+            .map_err(|e| CliError::Usage(e.to_string().replacen("--resolution", "--reach", 1)))?;
+    }
     let default = format!("{}.html", file_stem(&chain.name));
     let path = output.map_or_else(|| Path::new(&default).to_path_buf(), Path::to_path_buf);
     let t = std::time::Instant::now();
@@ -67,11 +82,27 @@ pub fn run(
     let derived = kinegen_core::derive(chain, options);
     let dets = det_hook::determinants(chain, &derived);
     let s = crate::stats::stats(chain, &derived.model, &dets, &generated, time_ms);
-    let text = page(chain, &derived, &s);
+    let map = reach.map(|r| reach_map(chain, &derived, r));
+    let text = page(chain, &derived, &s, map.as_ref());
     crate::reach::write_atomically(&path, |f| {
         f.write_all(text.as_bytes()).map_err(|e| e.to_string())
     })?;
     Ok(format!("wrote {} ({} bytes)\n", path.display(), text.len()))
+}
+
+/// The map `kinegen reach --resolution r` computes, or why there is none (a robot
+/// without a closed-form IK).
+fn reach_map(chain: &Chain, derived: &Derived, r: f64) -> Result<crate::reach::Map, String> {
+    let settings = crate::reach::Settings {
+        grid: crate::reach::Grid::reuleaux(r).map_err(|e| e.to_string())?,
+        orientations: crate::reach::Orientations::parse("50").map_err(|e| e.to_string())?,
+        free_samples: 8,
+        skip: true,
+        threads: None,
+        progress: false,
+        roll_symmetry: true,
+    };
+    crate::reach::map::compute(chain, derived, &settings).map_err(|e| e.to_string())
 }
 
 /// `UR5` → `ur5`, `PUMA 560` → `puma_560`: a file name from a robot's name.
