@@ -17,6 +17,7 @@
 //! Every command is a thin caller of `kinegen_core`; [`run`] returns the text to print,
 //! so it is testable without a process.
 
+pub mod colour;
 pub mod det_hook;
 pub mod error;
 pub mod eval;

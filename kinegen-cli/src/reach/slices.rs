@@ -178,25 +178,10 @@ fn picture(
     root.present().map_err(|e| err(&e))
 }
 
-/// Viridis, by linear interpolation between nine of its colours.
+/// Viridis ([`crate::colour::viridis`]) as a plotters colour.
 fn viridis(t: f64) -> RGBColor {
-    const STOPS: [(u8, u8, u8); 9] = [
-        (68, 1, 84),
-        (71, 44, 122),
-        (59, 81, 139),
-        (44, 113, 142),
-        (33, 144, 141),
-        (39, 173, 129),
-        (92, 200, 99),
-        (170, 220, 50),
-        (253, 231, 37),
-    ];
-    let t = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
-    let i = (t.floor() as usize).min(STOPS.len() - 2);
-    let f = t - i as f64;
-    let mix = |a: u8, b: u8| (f64::from(a) + f * (f64::from(b) - f64::from(a))).round() as u8;
-    let (a, b) = (STOPS[i], STOPS[i + 1]);
-    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+    let [r, g, b] = crate::colour::viridis(t);
+    RGBColor(r, g, b)
 }
 
 /// Register a TrueType font for the labels, once; whether one was found.

@@ -167,32 +167,10 @@ fn tick(v: f64) -> String {
     format!("{v:.2}")
 }
 
-/// Viridis at `t ∈ [0, 1]` (clamped), as `#rrggbb`: eleven of its stops, interpolated.
+/// Viridis at `t ∈ [0, 1]` (clamped) as `#rrggbb` ([`crate::colour::viridis`]).
 pub fn viridis(t: f64) -> String {
-    const STOPS: [(u8, u8, u8); 11] = [
-        (68, 1, 84),
-        (72, 36, 117),
-        (65, 68, 135),
-        (53, 95, 141),
-        (42, 120, 142),
-        (33, 145, 140),
-        (34, 168, 132),
-        (68, 191, 112),
-        (122, 209, 81),
-        (189, 223, 38),
-        (253, 231, 37),
-    ];
-    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) } * 10.0;
-    let i = (t.floor() as usize).min(9);
-    let f = t - i as f64;
-    let (a, b) = (STOPS[i], STOPS[i + 1]);
-    let mix = |x: u8, y: u8| (f64::from(x) + f * (f64::from(y) - f64::from(x))).round() as u8;
-    format!(
-        "#{:02x}{:02x}{:02x}",
-        mix(a.0, b.0),
-        mix(a.1, b.1),
-        mix(a.2, b.2)
-    )
+    let [r, g, b] = crate::colour::viridis(t);
+    format!("#{r:02x}{g:02x}{b:02x}")
 }
 
 #[cfg(test)]
