@@ -4,14 +4,14 @@
 
 use std::fmt::Write;
 
-use kinegen_core::emit::code::{Coder, OpCount};
+use kinegen_core::emit::code::Coder;
 use kinegen_core::emit::mathml::{self, escape, math, mathml_lhs, mtext};
 use kinegen_core::emit::text::to_text;
 use kinegen_core::{Chain, Derived};
 
 use super::html::{self, Section};
 use crate::det_hook::{Determinants, Factor};
-use crate::formulas::{sections, Line, What};
+use crate::formulas::{ops_text, sections, Line, What};
 
 /// FK, the Jacobian(s) and det J.
 pub fn first_order(chain: &Chain, derived: &Derived, dets: &Determinants) -> Section {
@@ -190,19 +190,6 @@ fn line(l: &Line) -> String {
     }
     let eq = math(&mathml::equation(&lhs(&l.text_lhs), &rhs), false);
     html::equation(&eq, &text.join(" = "))
-}
-
-/// `19 operations: 8 add, 11 mul, 0 div, 0 neg; 2 sin_cos`.
-pub fn ops_text(o: &OpCount) -> String {
-    format!(
-        "{} operations: {} add, {} mul, {} div, {} neg; {} sin_cos",
-        o.total(),
-        o.add,
-        o.mul,
-        o.div,
-        o.neg,
-        o.trig
-    )
 }
 
 #[cfg(test)]

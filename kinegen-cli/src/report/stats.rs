@@ -37,18 +37,9 @@ pub fn section(chain: &Chain, s: &crate::stats::Stats, missing: &str) -> Section
         &["output", "add", "mul", "div", "neg", "total", "sin_cos"],
         &rows,
     ));
-    let t = &s.stages;
     body.push_str(&html::p(&format!(
-        "Engine time: {:.1} ms (FK and Jacobians {:.1}, det {:.1}, second order {:.1}, IK {:.2}, \
-         emitting the code {:.1} of which the IK's {:.2}, printing {:.1}).",
-        s.time_ms,
-        t.order_ms,
-        t.det_ms,
-        t.second_order_ms,
-        t.ik_ms,
-        t.emit_ms,
-        t.ik_emit_ms,
-        t.print_ms
+        "Engine time: {}.",
+        crate::stats::engine_time(s)
     )));
     Section {
         id: "stats",

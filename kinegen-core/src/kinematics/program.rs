@@ -327,15 +327,21 @@ mod tests {
     use crate::derive;
     use crate::front::toml_file::load_description_file;
 
+    /// A shipped robot's chain and derivation.
+    fn shipped(file: &str) -> (Chain, crate::Derived) {
+        let path = format!("{}/../robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+        let (robot, options) = load_description_file(path.as_ref()).unwrap();
+        let chain = robot.chain();
+        let derived = derive(&chain, &options);
+        (chain, derived)
+    }
+
     /// Every output group of shipped robots (revolute and prismatic joints, offsets,
     /// constant twists) gives the graph walk's bits.
     #[test]
     fn same_bits_as_the_graph_walk() {
         for file in ["ur5", "puma560", "scara", "stanford", "panda"] {
-            let path = format!("{}/../robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
-            let (robot, options) = load_description_file(path.as_ref()).unwrap();
-            let chain = robot.chain();
-            let derived = derive(&chain, &options);
+            let (chain, derived) = shipped(file);
             let m = &derived.model;
             let mut ids: Vec<Id> = m.fk_rows.iter().flatten().copied().collect();
             ids.extend(m.jacobian.iter().flatten());
@@ -365,10 +371,7 @@ mod tests {
     fn lanes_give_each_vectors_bits() {
         let sin_cos = |x: [f64; 4]| (x.map(f64::sin), x.map(f64::cos));
         for file in ["ur5", "stanford", "panda"] {
-            let path = format!("{}/../robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
-            let (robot, options) = load_description_file(path.as_ref()).unwrap();
-            let chain = robot.chain();
-            let derived = derive(&chain, &options);
+            let (chain, derived) = shipped(file);
             let m = &derived.model;
             let mut ids: Vec<Id> = m.fk_rows.iter().flatten().copied().collect();
             ids.extend(m.jacobian_ee.iter().flatten());
