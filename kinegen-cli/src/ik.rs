@@ -350,19 +350,20 @@ impl Solver {
         residuals: bool,
         scratch: &std::cell::RefCell<Scratch>,
     ) -> Result<PoseResult, CliError> {
-        let branches = self.branches(pose, near, locked, arm_angle, scratch)?;
-        let s = &mut *scratch.borrow_mut();
-        let target = Pose::from_matrix(&pose);
+        let mut solutions = DynSolutions::default();
         let (mut misses, mut bits) = (Vec::new(), Vec::new());
-        self.measure(
-            branches.len(),
-            |i| &branches[i].q,
-            &target,
+        self.measured_into(
+            pose,
+            near,
+            locked,
+            arm_angle,
             residuals,
-            s,
+            scratch,
+            &mut solutions,
             &mut misses,
             &mut bits,
-        );
+        )?;
+        let branches = solutions.to_branches();
         let residuals = misses;
         let singular = bits.into_iter().map(|b| self.names(b)).collect();
         let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
@@ -421,22 +422,25 @@ impl Solver {
         Ok(out.to_branches())
     }
 
-    /// Every solution of `pose` with its residual (NaN without `residuals`) and the bits
-    /// of its vanishing singular factors (in the determinant's order), into storage the
-    /// caller keeps from pose to pose: what [`Solver::solve_with`] reports, without
-    /// allocating once the storage has grown. `misses` and `bits` are replaced.
+    /// Every solution of `pose` (as [`Solver::branches`]) with its residual (NaN without
+    /// `residuals`) and the bits of its vanishing singular factors (in the determinant's
+    /// order), into storage the caller keeps from pose to pose: what
+    /// [`Solver::solve_with`] reports, without allocating once the storage has grown.
+    /// `misses` and `bits` are replaced.
     #[allow(clippy::too_many_arguments)]
     pub fn measured_into(
         &self,
         pose: [[f64; 4]; 4],
+        near: Option<&[f64]>,
         locked: Option<f64>,
+        arm_angle: Option<f64>,
         residuals: bool,
         scratch: &std::cell::RefCell<Scratch>,
         solutions: &mut DynSolutions,
         misses: &mut Vec<f64>,
         bits: &mut Vec<u32>,
     ) -> Result<(), CliError> {
-        self.solutions_into(pose, None, locked, None, scratch, solutions)?;
+        self.solutions_into(pose, near, locked, arm_angle, scratch, solutions)?;
         misses.clear();
         bits.clear();
         let target = Pose::from_matrix(&pose);

@@ -886,7 +886,9 @@ impl Solved {
         for (i, p) in poses.iter().enumerate() {
             solver.measured_into(
                 *p,
+                None,
                 locked,
+                None,
                 residuals,
                 &scratch,
                 &mut sols,
