@@ -111,7 +111,25 @@ pub struct Derived {
 /// assert!(code.contains("pub fn jacobian(&self, q: &[f64; 2]) -> [[f64; 2]; 6]"));
 /// ```
 pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
-    let derived = derive(chain, options);
+    generate_from(chain, header, &derive(chain, options))
+}
+
+/// [`generate`] from the chain's [`derive`]d results, for a caller that also reads them
+/// (the CLI's `stats` and `report`): the chain is derived once.
+///
+/// ```
+/// use kinegen_core::{derive, front::toml_file::load_str, generate, generate_from, ItemHeader};
+/// let src = "name = \"RR\"\nconvention = \"standard\"\n[params]\nL1 = 1.0\nL2 = 0.8\n\
+///            [[joints]]\ntype = \"revolute\"\na = \"L1\"\nalpha = 0\nd = 0\n\
+///            [[joints]]\ntype = \"revolute\"\na = \"L2\"\nalpha = 0\nd = 0\n";
+/// let (robot, options) = load_str(src, "rr.toml").unwrap();
+/// let chain = robot.chain();
+/// let derived = derive(&chain, &options);
+/// let header = ItemHeader::public("RR");
+/// let code = generate_from(&chain, &header, &derived).pretty();
+/// assert_eq!(code, generate(&chain, &header, &options).pretty());
+/// ```
+pub fn generate_from(chain: &Chain, header: &ItemHeader, derived: &Derived) -> Generated {
     let mut times = derived.times;
     let mut t = Instant::now();
     // What the type holds: each method's straight-line code and doc, the constants.
@@ -128,7 +146,7 @@ pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Genera
     // Printed, and parsed into tokens.
     let tokens = item(chain, header, &functions);
     times.print_ms = lap(&mut t);
-    let mut notes = derived.model.notes;
+    let mut notes = derived.model.notes.clone();
     notes.extend(functions.notes);
     Generated {
         tokens,

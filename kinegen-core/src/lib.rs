@@ -28,6 +28,6 @@ pub mod simplify;
 pub use chain::Chain;
 pub use emit::functions::Stats;
 pub use emit::rust::ItemHeader;
-pub use generate::{derive, generate, Derived, Generated, StageTimes};
+pub use generate::{derive, generate, generate_from, Derived, Generated, StageTimes};
 pub use model::dh::Robot;
 pub use model::options::{Budget, Deadline, Options};

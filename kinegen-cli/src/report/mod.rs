@@ -29,7 +29,7 @@ pub mod trajectory;
 use std::io::Write;
 use std::path::Path;
 
-use kinegen_core::{generate, Chain, Derived, ItemHeader};
+use kinegen_core::{generate_from, Chain, Derived, ItemHeader};
 
 use crate::det_hook;
 use crate::error::CliError;
@@ -77,9 +77,9 @@ pub fn run(
     let default = format!("{}.html", file_stem(&chain.name));
     let path = output.map_or_else(|| Path::new(&default).to_path_buf(), Path::to_path_buf);
     let t = std::time::Instant::now();
-    let generated = generate(chain, &ItemHeader::public(&chain.name), options);
-    let time_ms = t.elapsed().as_secs_f64() * 1e3;
     let derived = kinegen_core::derive(chain, options);
+    let generated = generate_from(chain, &ItemHeader::public(&chain.name), &derived);
+    let time_ms = t.elapsed().as_secs_f64() * 1e3;
     let dets = det_hook::determinants(chain, &derived);
     let s = crate::stats::stats(chain, &derived.model, &dets, &generated, time_ms);
     let map = reach.map(|r| reach_map(chain, &derived, r));
