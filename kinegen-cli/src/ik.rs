@@ -27,7 +27,10 @@ pub struct PoseResult {
     pub branches: Vec<DynBranch>,
     /// `max |fk(q) − pose|` of each (measured for every one here).
     pub residuals: Vec<f64>,
-    /// Names of the vanishing singular factors of each (`sin(q5) = 0`).
+    /// Names of the vanishing singular factors of each (`sin(q5) = 0`): the generated
+    /// `ik`'s `singular` bits, measured on the branches a subproblem found singular or
+    /// solved in least squares (where a factor vanishes, some subproblem meets a double
+    /// root or a free angle).
     pub singular: Vec<Vec<String>>,
     /// The answer of `ik_near`, when a current configuration was given.
     pub near: Option<Option<Vec<f64>>>,
@@ -53,8 +56,6 @@ pub struct Solver {
     fk: Program,
     /// The determinant's singular factors (none without a closed-form determinant).
     factors: Program,
-    /// Both at once, sharing their sines and cosines: what each solution reports.
-    fk_and_factors: Program,
     /// The task rows a planar, position or SCARA-like arm solves (`None`: the pose).
     task_rows: Option<Vec<usize>>,
     /// The free joints' values when the caller gives none.
@@ -67,10 +68,9 @@ pub struct Scratch {
     fk: Vec<f64>,
     factors: Vec<f64>,
     values: Vec<f64>,
-    /// Lane registers and outputs of the programs that measure the solutions, four at a
+    /// Lane registers and outputs of `fk` measuring the solutions' residuals, four at a
     /// time.
-    factors_lanes: Vec<[f64; LANES]>,
-    fk_and_factors_lanes: Vec<[f64; LANES]>,
+    fk_lanes: Vec<[f64; LANES]>,
     lane_values: Vec<[f64; LANES]>,
 }
 
@@ -97,7 +97,6 @@ impl Solver {
                 .unzip(),
             _ => (Vec::new(), Vec::new()),
         };
-        let both: Vec<_> = fk_ids.iter().chain(&factor_ids).copied().collect();
         let (revolute_joints, prismatic) = match &ik.plan.family {
             Family::Planar {
                 revolute,
@@ -136,7 +135,6 @@ impl Solver {
                 .collect(),
             fk: Program::new(&model.sym, chain, &fk_ids),
             factors: Program::new(&model.sym, chain, &factor_ids),
-            fk_and_factors: Program::new(&model.sym, chain, &both),
             zeros: vec![0.0; chain.dof()],
             task_rows: match ik.plan.family {
                 Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => chain
@@ -154,9 +152,8 @@ impl Solver {
             fk: self.fk.registers(),
             factors: self.factors.registers(),
             values: vec![0.0; self.fk.outputs().max(self.factors.outputs())],
-            factors_lanes: self.factors.lane_registers(),
-            fk_and_factors_lanes: self.fk_and_factors.lane_registers(),
-            lane_values: vec![[0.0; LANES]; self.fk_and_factors.outputs()],
+            fk_lanes: self.fk.lane_registers(),
+            lane_values: vec![[0.0; LANES]; self.fk.outputs()],
         }
     }
 
@@ -246,8 +243,8 @@ impl Solver {
         bits
     }
 
-    /// The names of the singular factors set in `bits` (`sin(q5) = 0`), as
-    /// [`Solver::measured_into`] gives them.
+    /// The names of the singular factors set in `bits` (`sin(q5) = 0`), as a
+    /// solution's flags ([`kinegen::ik::dispatch::DynFlags::singular`]) give them.
     pub fn names(&self, bits: u32) -> Vec<String> {
         self.factor_names
             .iter()
@@ -275,53 +272,32 @@ impl Solver {
         self.miss(&t, pose)
     }
 
-    /// What each of `count` solutions (joint values `q(i)`) reports, appended to
-    /// `misses` and `bits`: its residual (with `residual`; else NaN) and the bits of its
-    /// vanishing singular factors. One program of fk and the factors together shares
-    /// their sines and cosines; four solutions are evaluated side by side.
-    #[allow(clippy::too_many_arguments)]
+    /// The residual of each of `count` solutions (joint values `q(i)`), appended to
+    /// `misses`: four solutions are evaluated side by side by one program of fk.
     fn measure<'q>(
         &self,
         count: usize,
         q: impl Fn(usize) -> &'q [f64],
         pose: &Pose,
-        residual: bool,
         s: &mut Scratch,
         misses: &mut Vec<f64>,
-        bits: &mut Vec<u32>,
     ) {
-        let (program, regs) = if residual {
-            (&self.fk_and_factors, &mut s.fk_and_factors_lanes)
-        } else {
-            (&self.factors, &mut s.factors_lanes)
-        };
-        let factors_from = if residual { 12 } else { 0 };
         let v = &mut s.lane_values;
         for first in (0..count).step_by(LANES) {
             let len = LANES.min(count - first);
             // A short chunk repeats its last solution in the spare lanes.
             let lanes: [&[f64]; LANES] = std::array::from_fn(|l| q(first + l.min(len - 1)));
-            program.eval_lanes(lanes, regs, v, kinegen::math::sin_cos_n);
-            for l in 0..len {
-                misses.push(if residual {
-                    let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
-                    for (i, row) in t.iter_mut().take(3).enumerate() {
-                        for (j, x) in row.iter_mut().enumerate() {
-                            *x = v[4 * i + j][l];
-                        }
-                    }
-                    self.miss(&t, pose)
-                } else {
-                    f64::NAN
-                });
-                let mut b = 0;
-                for (i, f) in v[factors_from..program.outputs()].iter().enumerate() {
-                    if f[l].abs() <= kinegen::ik::solutions::SINGULAR_TOLERANCE {
-                        b |= 1 << i.min(31);
+            self.fk
+                .eval_lanes(lanes, &mut s.fk_lanes, v, kinegen::math::sin_cos_n);
+            misses.extend((0..len).map(|l| {
+                let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+                for (i, row) in t.iter_mut().take(3).enumerate() {
+                    for (j, x) in row.iter_mut().enumerate() {
+                        *x = v[4 * i + j][l];
                     }
                 }
-                bits.push(b);
-            }
+                self.miss(&t, pose)
+            }));
         }
     }
 
@@ -351,7 +327,7 @@ impl Solver {
         scratch: &std::cell::RefCell<Scratch>,
     ) -> Result<PoseResult, CliError> {
         let mut solutions = DynSolutions::default();
-        let (mut misses, mut bits) = (Vec::new(), Vec::new());
+        let mut misses = Vec::new();
         self.measured_into(
             pose,
             near,
@@ -361,12 +337,11 @@ impl Solver {
             scratch,
             &mut solutions,
             &mut misses,
-            &mut bits,
         )?;
+        let near_q = near.map(|q| nearest(&solutions, q, &self.revolute, &self.limits));
         let branches = solutions.to_branches();
         let residuals = misses;
-        let singular = bits.into_iter().map(|b| self.names(b)).collect();
-        let near_q = near.map(|q| nearest(&branches, q, &self.revolute, &self.limits));
+        let singular = branches.iter().map(|b| self.names(b.singular)).collect();
         let free_joint = match arm_angle {
             None => match self.plan.locked {
                 Some(k) => Some((k + 1, self.q_locked(locked, near, None)?)),
@@ -423,10 +398,9 @@ impl Solver {
     }
 
     /// Every solution of `pose` (as [`Solver::branches`]) with its residual (NaN without
-    /// `residuals`) and the bits of its vanishing singular factors (in the determinant's
-    /// order), into storage the caller keeps from pose to pose: what
+    /// `residuals`), into storage the caller keeps from pose to pose: what
     /// [`Solver::solve_with`] reports, without allocating once the storage has grown.
-    /// `misses` and `bits` are replaced.
+    /// `misses` is replaced.
     #[allow(clippy::too_many_arguments)]
     pub fn measured_into(
         &self,
@@ -438,24 +412,37 @@ impl Solver {
         scratch: &std::cell::RefCell<Scratch>,
         solutions: &mut DynSolutions,
         misses: &mut Vec<f64>,
-        bits: &mut Vec<u32>,
     ) -> Result<(), CliError> {
         self.solutions_into(pose, near, locked, arm_angle, scratch, solutions)?;
         misses.clear();
-        bits.clear();
+        if !residuals {
+            misses.resize(solutions.len(), f64::NAN);
+            return Ok(());
+        }
         let target = Pose::from_matrix(&pose);
-        let s = &mut *scratch.borrow_mut();
         let sols = &*solutions;
         self.measure(
             sols.len(),
             |i| sols.q(i),
             &target,
-            residuals,
-            s,
+            &mut scratch.borrow_mut(),
             misses,
-            bits,
         );
         Ok(())
+    }
+
+    /// The exact solution of `pose` nearest to `q` (its free joints from it), as
+    /// [`Solver::solve`] gives it with `near`, solved into `out` and nothing else
+    /// measured: `ik_near` pose after pose.
+    pub fn near_into(
+        &self,
+        pose: [[f64; 4]; 4],
+        q: &[f64],
+        scratch: &std::cell::RefCell<Scratch>,
+        out: &mut DynSolutions,
+    ) -> Result<Option<Vec<f64>>, CliError> {
+        self.solutions_into(pose, Some(q), None, None, scratch, out)?;
+        Ok(nearest(out, q, &self.revolute, &self.limits))
     }
 
     /// [`Solver::branches`] into `out` (its solutions replaced).
@@ -510,15 +497,15 @@ impl Solver {
 /// The exact branch nearest to `q` (whole turns of revolute joints chosen nearest to it
 /// within the limits), as `ik_near` picks it.
 fn nearest(
-    branches: &[DynBranch],
+    solutions: &DynSolutions,
     q: &[f64],
     revolute: &[bool],
     limits: &[[f64; 2]],
 ) -> Option<Vec<f64>> {
     use std::f64::consts::TAU;
     let mut best: Option<(Vec<f64>, f64)> = None;
-    for b in branches.iter().filter(|b| b.exact) {
-        let mut x = b.q.clone();
+    for j in (0..solutions.len()).filter(|&j| solutions.flags(j).exact) {
+        let mut x = solutions.q(j).to_vec();
         let mut d2 = 0.0;
         for i in 0..x.len() {
             if revolute[i] {

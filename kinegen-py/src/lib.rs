@@ -17,7 +17,7 @@ use kinegen_cli::{eval, formulas, ik, robots, CliError, UrdfArgs, What};
 use kinegen_core::algebra::graph::Id;
 use kinegen_core::front::toml_file::{load_description_file, load_description_str};
 use kinegen_core::front::urdf::Urdf;
-use kinegen_core::{derive, generate, Chain, Derived, ItemHeader, Options};
+use kinegen_core::{derive, generate_from, Chain, Derived, ItemHeader, Options};
 use numpy::ndarray::ArrayViewD;
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn};
 use pyo3::create_exception;
@@ -35,7 +35,6 @@ create_exception!(
 /// What a loaded robot keeps: the engine's input and results, derived once.
 struct Inner {
     chain: Chain,
-    options: Options,
     derived: Derived,
     dets: Determinants,
     /// The nodes of fk's 3×4 rows, J's and J_ee's 6×N, row-major (for `_reference`).
@@ -134,7 +133,6 @@ impl Robot {
                 jacobian_ids,
                 jacobian_ee_ids,
                 chain,
-                options,
                 derived,
                 dets,
             }),
@@ -628,15 +626,12 @@ impl Robot {
             guarded(|| {
                 let solver = inner.solver()?;
                 let scratch = std::cell::RefCell::new(solver.scratch());
+                let mut sols = kinegen::ik::dispatch::DynSolutions::default();
                 poses
                     .poses
                     .iter()
                     .zip(near.data.chunks(n))
-                    .map(|(p, q)| {
-                        solver
-                            .solve_with(*p, Some(q), None, None, false, &scratch)
-                            .map(|r| r.near.flatten())
-                    })
+                    .map(|(p, q)| solver.near_into(*p, q, &scratch, &mut sols))
                     .collect::<Result<Vec<_>, _>>()
             })
         })?;
@@ -753,10 +748,11 @@ impl Robot {
         Ok(self.show(w, true))
     }
 
-    /// The Rust code `kinematics!` generates for the robot, as `kinegen rust` prints it.
+    /// The Rust code `kinematics!` generates for the robot, as `kinegen rust` prints it
+    /// (from the derivation the robot holds).
     fn rust(&self) -> String {
         let i = &self.inner;
-        generate(&i.chain, &ItemHeader::public(&i.chain.name), &i.options).pretty()
+        generate_from(&i.chain, &ItemHeader::public(&i.chain.name), &i.derived).pretty()
     }
 
     /// det J in LaTeX for Jupyter (the robot's name where it has none).
@@ -882,7 +878,7 @@ impl Solved {
             first_names: Vec::new(),
         };
         let mut sols = kinegen::ik::dispatch::DynSolutions::default();
-        let (mut misses, mut bits) = (Vec::new(), Vec::new());
+        let mut misses = Vec::new();
         for (i, p) in poses.iter().enumerate() {
             solver.measured_into(
                 *p,
@@ -893,18 +889,17 @@ impl Solved {
                 &scratch,
                 &mut sols,
                 &mut misses,
-                &mut bits,
             )?;
             out.counts.push(sols.len());
-            for j in 0..sols.len() {
+            for (j, miss) in misses.iter().enumerate() {
                 let f = sols.flags(j);
                 out.q.extend_from_slice(sols.q(j));
                 out.exact.push(f.exact);
-                out.singular.push(f.at_singularity || bits[j] != 0);
+                out.singular.push(f.at_singularity || f.singular != 0);
                 out.within_limits.push(f.within_limits);
-                out.residual.push(misses[j]);
+                out.residual.push(*miss);
                 if i == 0 {
-                    out.first_names.push(solver.names(bits[j]));
+                    out.first_names.push(solver.names(f.singular));
                 }
             }
         }
