@@ -22,6 +22,7 @@ use numpy::ndarray::ArrayViewD;
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyRuntimeError, PyValueError};
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
@@ -56,6 +57,9 @@ struct Inner {
     formulas: std::sync::OnceLock<Vec<[String; 4]>>,
     /// The closed-form IK's solver, built once, or why the robot has none.
     solver: Result<ik::Solver, CliError>,
+    /// The solver's registers, kept from call to call (one per call in flight: calls
+    /// from several threads take one each).
+    scratch: std::sync::Mutex<Vec<ik::Scratch>>,
 }
 
 /// A robot with its closed-form kinematics (see the module's docs).
@@ -68,6 +72,16 @@ fn to_py_err(e: CliError) -> PyErr {
     match e {
         CliError::Load(e) => LoadError::new_err(e.to_string()),
         CliError::Usage(m) => PyValueError::new_err(m),
+    }
+}
+
+/// `f` with the GIL released for a batch (other Python threads run meanwhile); a single
+/// item's call keeps it (its work takes microseconds).
+fn released<T: Send>(py: Python<'_>, batch: bool, f: impl FnOnce() -> T + Send) -> T {
+    if batch {
+        py.allow_threads(f)
+    } else {
+        f()
     }
 }
 
@@ -110,6 +124,7 @@ impl Robot {
             inner: Arc::new(Inner {
                 formulas: std::sync::OnceLock::new(),
                 solver,
+                scratch: std::sync::Mutex::new(Vec::new()),
                 fk: Tape::new(m, &chain, &fk_ids),
                 frames: Tape::new(
                     m,
@@ -149,6 +164,21 @@ impl Inner {
     fn solver(&self) -> Result<&ik::Solver, CliError> {
         self.solver.as_ref().map_err(Clone::clone)
     }
+
+    /// `f` with the solver and registers of it that no other call is using (made on
+    /// first use, then reused: a single pose's solve is short next to making them).
+    fn solving<T>(
+        &self,
+        f: impl FnOnce(&ik::Solver, &std::cell::RefCell<ik::Scratch>) -> Result<T, CliError>,
+    ) -> Result<T, CliError> {
+        let solver = self.solver()?;
+        let pool = || self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+        let taken = pool().pop();
+        let scratch = std::cell::RefCell::new(taken.unwrap_or_else(|| solver.scratch()));
+        let result = f(solver, &scratch);
+        pool().push(scratch.into_inner());
+        result
+    }
 }
 
 /// Joint vectors read from a 1-D array of N or an (M, N) batch: the rows, flat, and
@@ -182,7 +212,12 @@ fn read_batch(
         )));
     };
     let rows = if batch { shape[0] } else { 1 };
-    let data: Vec<f64> = view.iter().copied().collect();
+    // A C-contiguous array (what NumPy makes by default) in one copy; any other layout
+    // element by element.
+    let data: Vec<f64> = match view.as_slice() {
+        Some(flat) => flat.to_vec(),
+        None => view.iter().copied().collect(),
+    };
     if let Some(i) = data.iter().position(|v| !v.is_finite()) {
         let per: usize = item.iter().product::<usize>().max(1);
         let at = if batch {
@@ -227,7 +262,7 @@ fn shaped<'py, T: numpy::Element>(
 
 impl Robot {
     /// Evaluate `f` (which writes `len` values from one joint vector) on every row of `q`,
-    /// the GIL released; the result has shape `shape`, `(M, *shape)` for a batch.
+    /// the GIL released for a batch; the result has shape `shape`, `(M, *shape)` for a batch.
     fn map_q<'py, F>(
         &self,
         py: Python<'py>,
@@ -241,7 +276,7 @@ impl Robot {
         let n = self.dof();
         let b = read_batch(&q, &[n], "q")?;
         let inner = &*self.inner;
-        let out = py.allow_threads(|| {
+        let out = released(py, b.batch, || {
             guarded(|| {
                 let size: usize = shape.iter().product();
                 let mut out = Vec::with_capacity(size * b.rows);
@@ -256,7 +291,7 @@ impl Robot {
     }
 
     /// Evaluate `tape(inner)` on every row of `q` (four rows side by side, the GIL
-    /// released), each row's outputs laid out by `layout` (`None`: as they are); the
+    /// released for a batch), each row's outputs laid out by `layout` (`None`: as they are); the
     /// result has shape `shape`, `(M, *shape)` for a batch.
     fn map_tape<'py>(
         &self,
@@ -269,7 +304,7 @@ impl Robot {
         let n = self.dof();
         let b = read_batch(&q, &[n], "q")?;
         let inner = &*self.inner;
-        let out = py.allow_threads(|| {
+        let out = released(py, b.batch, || {
             guarded(|| {
                 let Some(t) = tape(inner) else {
                     return Vec::new();
@@ -562,7 +597,7 @@ impl Robot {
             ));
         }
         let inner = &*self.inner;
-        let out = py.allow_threads(|| {
+        let out = released(py, b.batch, || {
             guarded(|| {
                 let mut out = Vec::with_capacity(6 * b.rows);
                 for (q, qd) in b.data.chunks(n).zip(r.data.chunks(n)) {
@@ -593,14 +628,15 @@ impl Robot {
     ) -> PyResult<Bound<'py, PyDict>> {
         let poses = read_poses(&pose)?;
         let inner = &*self.inner;
-        let solved = py.allow_threads(|| {
+        let solved = released(py, poses.batch, || {
             guarded(|| {
-                let solver = inner.solver()?;
-                Solved::new(solver, &poses.poses, locked, residuals)
+                inner.solving(|solver, scratch| {
+                    Solved::new(solver, scratch, &poses.poses, locked, residuals)
+                })
             })
         })?;
         let solved = solved.map_err(to_py_err)?;
-        ik_dict(py, &solved, self.dof(), poses.batch)
+        ik_dict(py, solved, poses.batch)
     }
 
     /// The exact IK solution nearest to the configuration `q` (whole turns of revolute
@@ -622,17 +658,17 @@ impl Robot {
             ));
         }
         let inner = &*self.inner;
-        let found = py.allow_threads(|| {
+        let found = released(py, poses.batch, || {
             guarded(|| {
-                let solver = inner.solver()?;
-                let scratch = std::cell::RefCell::new(solver.scratch());
-                let mut sols = kinegen::ik::dispatch::DynSolutions::default();
-                poses
-                    .poses
-                    .iter()
-                    .zip(near.data.chunks(n))
-                    .map(|(p, q)| solver.near_into(*p, q, &scratch, &mut sols))
-                    .collect::<Result<Vec<_>, _>>()
+                inner.solving(|solver, scratch| {
+                    let mut sols = kinegen::ik::dispatch::DynSolutions::default();
+                    poses
+                        .poses
+                        .iter()
+                        .zip(near.data.chunks(n))
+                        .map(|(p, q)| solver.near_into(*p, q, scratch, &mut sols))
+                        .collect::<Result<Vec<_>, _>>()
+                })
             })
         })?;
         let found = found.map_err(to_py_err)?;
@@ -822,12 +858,14 @@ fn read_poses(x: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Poses> {
         .chunks(16)
         .enumerate()
         .map(|(i, p)| {
-            let what = if b.batch {
-                format!("pose {i}")
-            } else {
-                "pose".into()
-            };
-            ik::pose_from(p, &what).map_err(to_py_err)
+            // The batch index is written into the message of a pose that fails only: no
+            // string is made for the others.
+            ik::pose_from(p, "pose").map_err(|e| match e {
+                CliError::Usage(m) if b.batch => {
+                    to_py_err(CliError::Usage(m.replacen("pose", &format!("pose {i}"), 1)))
+                }
+                e => to_py_err(e),
+            })
         })
         .collect::<PyResult<Vec<_>>>()?;
     Ok(Poses {
@@ -844,13 +882,20 @@ fn with_bottom_rows(rows: &[f64], out: &mut Vec<f64>) {
     }
 }
 
-/// The solutions of a batch of poses, flat: what `Robot.ik` returns, gathered without
-/// an allocation per pose.
+/// The solutions of a batch of poses as `Robot.ik` returns them: `k` places per pose
+/// (the most solutions any pose has), the unused ones padded (NaN, `false`), written in
+/// place pose after pose — no allocation per pose, no copy into the arrays at the end.
 struct Solved {
-    /// Solutions of each pose.
-    counts: Vec<usize>,
-    /// Joint values, solution after solution.
+    /// Poses, and joints per solution.
+    m: usize,
+    n: usize,
+    /// Places per pose; when a pose has more solutions, every pose's rows are spread out
+    /// to the new count (at most a few times a batch: a robot has at most 16 solutions).
+    k: usize,
+    /// `(M, k, n)` joint values.
     q: Vec<f64>,
+    /// `(M, k)` masks and residuals.
+    valid: Vec<bool>,
     exact: Vec<bool>,
     /// A factor of det J vanishes, or a subproblem met a singular configuration.
     singular: Vec<bool>,
@@ -863,14 +908,18 @@ struct Solved {
 impl Solved {
     fn new(
         solver: &ik::Solver,
+        scratch: &std::cell::RefCell<ik::Scratch>,
         poses: &[[[f64; 4]; 4]],
         locked: Option<f64>,
         residuals: bool,
     ) -> Result<Solved, CliError> {
-        let scratch = std::cell::RefCell::new(solver.scratch());
+        let n = solver.chain().dof();
         let mut out = Solved {
-            counts: Vec::with_capacity(poses.len()),
+            m: poses.len(),
+            n,
+            k: 0,
             q: Vec::new(),
+            valid: Vec::new(),
             exact: Vec::new(),
             singular: Vec::new(),
             within_limits: Vec::new(),
@@ -886,14 +935,21 @@ impl Solved {
                 locked,
                 None,
                 residuals,
-                &scratch,
+                scratch,
                 &mut sols,
                 &mut misses,
             )?;
-            out.counts.push(sols.len());
+            if sols.len() > out.k {
+                out.spread(i, sols.len());
+                if i == 0 {
+                    // The first pose's own count: reserve for the batch at once.
+                    out.reserve(poses.len());
+                }
+            }
             for (j, miss) in misses.iter().enumerate() {
                 let f = sols.flags(j);
                 out.q.extend_from_slice(sols.q(j));
+                out.valid.push(true);
                 out.exact.push(f.exact);
                 out.singular.push(f.at_singularity || f.singular != 0);
                 out.within_limits.push(f.within_limits);
@@ -902,54 +958,89 @@ impl Solved {
                     out.first_names.push(solver.names(f.singular));
                 }
             }
+            out.pad(out.k - sols.len());
         }
         Ok(out)
     }
+
+    /// Room for `m` poses of `k` places.
+    fn reserve(&mut self, m: usize) {
+        let places = m * self.k;
+        self.q.reserve(places * self.n);
+        for v in [
+            &mut self.valid,
+            &mut self.exact,
+            &mut self.singular,
+            &mut self.within_limits,
+        ] {
+            v.reserve(places);
+        }
+        self.residual.reserve(places);
+    }
+
+    /// `count` unused places.
+    fn pad(&mut self, count: usize) {
+        self.q.resize(self.q.len() + count * self.n, f64::NAN);
+        for v in [
+            &mut self.valid,
+            &mut self.exact,
+            &mut self.singular,
+            &mut self.within_limits,
+        ] {
+            v.resize(v.len() + count, false);
+        }
+        self.residual.resize(self.residual.len() + count, f64::NAN);
+    }
+
+    /// The `m` poses written so far re-laid with `k` places each (`k` > `self.k`).
+    fn spread(&mut self, m: usize, k: usize) {
+        fn respace<T: Copy>(v: &mut Vec<T>, m: usize, from: usize, to: usize, fill: T) {
+            let mut w = Vec::with_capacity(m * to);
+            for row in v.chunks(from.max(1)).take(m) {
+                w.extend_from_slice(row);
+                w.resize(w.len() + to - from, fill);
+            }
+            if from == 0 {
+                w.resize(m * to, fill);
+            }
+            *v = w;
+        }
+        let (n, old) = (self.n, self.k);
+        respace(&mut self.q, m, old * n, k * n, f64::NAN);
+        for v in [
+            &mut self.valid,
+            &mut self.exact,
+            &mut self.singular,
+            &mut self.within_limits,
+        ] {
+            respace(v, m, old, k, false);
+        }
+        respace(&mut self.residual, m, old, k, f64::NAN);
+        self.k = k;
+    }
 }
 
-/// The dict `Robot.ik` returns.
-fn ik_dict<'py>(
-    py: Python<'py>,
-    solved: &Solved,
-    n: usize,
-    batch: bool,
-) -> PyResult<Bound<'py, PyDict>> {
-    let k = solved.counts.iter().copied().max().unwrap_or(0);
-    let m = solved.counts.len();
-    let mut q = vec![f64::NAN; m * k * n];
-    let mut residual = vec![f64::NAN; m * k];
-    let (mut valid, mut exact, mut singular, mut within) = (
-        vec![false; m * k],
-        vec![false; m * k],
-        vec![false; m * k],
-        vec![false; m * k],
-    );
-    let mut from = 0;
-    for (i, &count) in solved.counts.iter().enumerate() {
-        for j in 0..count {
-            let (at, s) = (i * k + j, from + j);
-            q[at * n..(at + 1) * n].copy_from_slice(&solved.q[s * n..(s + 1) * n]);
-            residual[at] = solved.residual[s];
-            valid[at] = true;
-            exact[at] = solved.exact[s];
-            singular[at] = solved.singular[s];
-            within[at] = solved.within_limits[s];
-        }
-        from += count;
-    }
+/// The dict `Robot.ik` returns: `solved`'s arrays moved into NumPy's.
+fn ik_dict(py: Python<'_>, solved: Solved, batch: bool) -> PyResult<Bound<'_, PyDict>> {
+    let (m, n, k) = (solved.m, solved.n, solved.k);
     let lead: Vec<usize> = if batch { vec![m, k] } else { vec![k] };
-    let mask = |v: Vec<bool>| -> PyResult<Bound<'py, PyAny>> { shaped(py, v, lead.clone()) };
+    let mask = |v: Vec<bool>| shaped(py, v, lead.clone());
     let d = PyDict::new(py);
     let mut q_shape = lead.clone();
     q_shape.push(n);
-    d.set_item("q", shaped(py, q, q_shape)?)?;
-    d.set_item("valid", mask(valid)?)?;
-    d.set_item("exact", mask(exact)?)?;
-    d.set_item("singular", mask(singular)?)?;
-    d.set_item("within_limits", mask(within)?)?;
-    d.set_item("residual", shaped(py, residual, lead.clone())?)?;
+    // The keys made once per interpreter, not per call.
+    d.set_item(intern!(py, "q"), shaped(py, solved.q, q_shape)?)?;
+    d.set_item(intern!(py, "valid"), mask(solved.valid)?)?;
+    d.set_item(intern!(py, "exact"), mask(solved.exact)?)?;
+    d.set_item(intern!(py, "singular"), mask(solved.singular)?)?;
+    d.set_item(intern!(py, "within_limits"), mask(solved.within_limits)?)?;
+    d.set_item(
+        intern!(py, "residual"),
+        shaped(py, solved.residual, lead.clone())?,
+    )?;
     if !batch {
-        d.set_item("singular_factors", PyList::new(py, &solved.first_names)?)?;
+        let names = PyList::new(py, &solved.first_names)?;
+        d.set_item(intern!(py, "singular_factors"), names)?;
     }
     Ok(d)
 }

@@ -318,8 +318,13 @@ def test_batches_equal_single_calls(ur5):
     assert found.all()
     for i in range(7):
         np.testing.assert_array_equal(near[i], ur5.ik_near(poses[i], qs[i]))
-    # Lists are arrays too.
+    # Lists are arrays too, and so are arrays in any memory layout (Fortran order, a
+    # strided view): the same values as a C-contiguous array's.
     np.testing.assert_array_equal(ur5.fk(qs[0].tolist()), ur5.fk(qs[0]))
+    np.testing.assert_array_equal(ur5.fk(np.asfortranarray(qs)), ur5.fk(qs))
+    wide = np.repeat(qs, 2, axis=1)
+    np.testing.assert_array_equal(ur5.jacobian(wide[:, ::2]), ur5.jacobian(qs))
+    np.testing.assert_array_equal(ur5.ik(np.asfortranarray(poses))["q"], many["q"])
 
 
 # ---------------------------------------------------------------------------------------
@@ -476,6 +481,7 @@ def test_load_errors_name_the_file_and_line(tmp_path):
         (lambda r: r.ik(np.full((4, 4), np.nan)), "not a finite number"),
         (lambda r: r.ik(2 * np.eye(4)), "last row"),
         (lambda r: r.ik(np.diag([2.0, 1.0, 1.0, 1.0])), "not a rotation"),
+        (lambda r: r.ik(np.stack([np.eye(4), 2 * np.eye(4)])), "pose 1: the last row"),
         (lambda r: r.ik_near(np.eye(4), np.zeros((2, 6))), "one configuration per pose"),
         (lambda r: r.latex("nope"), "expected fk, jacobian"),
         (lambda r: kinegen.Robot.shipped("ur7"), "unknown robot `ur7`"),
