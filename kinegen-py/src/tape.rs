@@ -50,7 +50,7 @@ impl Tape {
     ) {
         let k = self.program.outputs();
         let vector = |i: usize| &q[i * n..(i + 1) * n];
-        let mut row = Vec::with_capacity(k);
+        let mut row = Vec::new();
         let put = |row: &[f64], out: &mut Vec<f64>| match layout {
             Some(f) => f(row, out),
             None => out.extend_from_slice(row),
@@ -70,13 +70,26 @@ impl Tape {
                 }
             }
         }
-        let mut regs = Vec::new();
-        for i in full..rows {
-            row.clear();
-            self.eval(vector(i), &mut regs, &mut row);
-            put(&row, out);
-        }
+        // The rest one by one, in this thread's registers (a single call makes none).
+        SCALAR_REGISTERS.with_borrow_mut(|regs| {
+            for i in full..rows {
+                if layout.is_none() {
+                    self.eval(vector(i), regs, out);
+                    continue;
+                }
+                row.clear();
+                self.eval(vector(i), regs, &mut row);
+                put(&row, out);
+            }
+        });
     }
+}
+
+std::thread_local! {
+    /// Registers of the one-by-one evaluations, reused from call to call on a thread.
+    static SCALAR_REGISTERS: std::cell::RefCell<Vec<f64>> = const {
+        std::cell::RefCell::new(Vec::new())
+    };
 }
 
 /// How a row's outputs become the values of the returned array (e.g. a 3×4 transform's
