@@ -12,13 +12,107 @@ use crate::algebra::poly::VarKind;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
 
-/// One operation: destination register, then operand registers.
+/// One operation: destination register, then operand registers. The last four fuse a
+/// product into the sum or difference that is its only reader (`a·b ± c·d`, `a·b ± c`,
+/// `c − a·b`): one dispatch instead of two or three, each product and the sum rounded
+/// as the separate operations round them, so the bits are the same.
 #[derive(Clone, Copy, Debug)]
 enum Op {
     Add(u32, u32, u32),
     Sub(u32, u32, u32),
     Mul(u32, u32, u32),
     Neg(u32, u32),
+    /// `d = a·b + c·e`.
+    AddProducts(u32, u32, u32, u32, u32),
+    /// `d = a·b − c·e`.
+    SubProducts(u32, u32, u32, u32, u32),
+    /// `d = a·b + c` (either order of the sum: IEEE addition commutes exactly).
+    AddProduct(u32, u32, u32, u32),
+    /// `d = a·b − c`.
+    ProductSub(u32, u32, u32, u32),
+    /// `d = c − a·b`.
+    SubProduct(u32, u32, u32, u32),
+}
+
+impl Op {
+    /// The registers it reads.
+    fn reads(&self) -> impl Iterator<Item = u32> {
+        let (v, n) = match *self {
+            Op::Add(_, a, b) | Op::Sub(_, a, b) | Op::Mul(_, a, b) => ([a, b, 0, 0], 2),
+            Op::Neg(_, a) => ([a, 0, 0, 0], 1),
+            Op::AddProducts(_, a, b, c, e) | Op::SubProducts(_, a, b, c, e) => ([a, b, c, e], 4),
+            Op::AddProduct(_, a, b, c)
+            | Op::ProductSub(_, a, b, c)
+            | Op::SubProduct(_, a, b, c) => ([a, b, c, 0], 3),
+        };
+        v.into_iter().take(n)
+    }
+
+    /// The arithmetic operations it stands for.
+    fn weight(&self) -> usize {
+        match self {
+            Op::Add(..) | Op::Sub(..) | Op::Mul(..) | Op::Neg(..) => 1,
+            Op::AddProducts(..) | Op::SubProducts(..) => 3,
+            Op::AddProduct(..) | Op::ProductSub(..) | Op::SubProduct(..) => 2,
+        }
+    }
+}
+
+/// `ops` with each product that only one sum or difference reads (and no output) folded
+/// into it. Registers are never reused (one per node), so a product's operands still
+/// hold their values where the sum reads them.
+fn fuse(ops: Vec<Op>, outputs: &[u32], registers: usize) -> Vec<Op> {
+    let mut uses = vec![0u32; registers];
+    for op in &ops {
+        for r in op.reads() {
+            uses[r as usize] += 1;
+        }
+    }
+    for &o in outputs {
+        uses[o as usize] += 1;
+    }
+    // The product writing each register, where only one operation reads it.
+    let mut product: Vec<Option<(u32, u32)>> = vec![None; registers];
+    for op in &ops {
+        if let Op::Mul(d, a, b) = *op {
+            if uses[d as usize] == 1 {
+                product[d as usize] = Some((a, b));
+            }
+        }
+    }
+    let mut folded = vec![false; registers];
+    let mut fused = Vec::with_capacity(ops.len());
+    for op in &ops {
+        let p = |r: u32| product[r as usize];
+        let new = match *op {
+            Op::Add(d, x, y) => match (p(x), p(y)) {
+                (Some((a, b)), Some((c, e))) => Some((Op::AddProducts(d, a, b, c, e), [x, y])),
+                (Some((a, b)), None) => Some((Op::AddProduct(d, a, b, y), [x, x])),
+                (None, Some((a, b))) => Some((Op::AddProduct(d, a, b, x), [y, y])),
+                (None, None) => None,
+            },
+            Op::Sub(d, x, y) => match (p(x), p(y)) {
+                (Some((a, b)), Some((c, e))) => Some((Op::SubProducts(d, a, b, c, e), [x, y])),
+                (Some((a, b)), None) => Some((Op::ProductSub(d, a, b, y), [x, x])),
+                (None, Some((a, b))) => Some((Op::SubProduct(d, a, b, x), [y, y])),
+                (None, None) => None,
+            },
+            _ => None,
+        };
+        match new {
+            Some((f, gone)) => {
+                for g in gone {
+                    folded[g as usize] = true;
+                }
+                fused.push(f);
+            }
+            None => fused.push(*op),
+        }
+    }
+    // The folded products' own operations go (they ran before their reader: the order
+    // of the rest is kept).
+    fused.retain(|op| !matches!(*op, Op::Mul(d, ..) if folded[d as usize]));
+    fused
 }
 
 /// A joint angle's sine and cosine leaves: `sin_cos(sign·q[joint] + offset)`, each
@@ -150,16 +244,13 @@ impl Program {
             .iter()
             .map(|&id| register[id as usize].expect("every output placed"))
             .collect();
+        let ops = fuse(ops, &outputs, initial.len());
         // Sines and cosines nothing reads are not computed (a measure reading q2..q5
         // skips q1's and q6's).
         let mut read = vec![false; initial.len()];
         for op in &ops {
-            match *op {
-                Op::Add(_, a, b) | Op::Sub(_, a, b) | Op::Mul(_, a, b) => {
-                    read[a as usize] = true;
-                    read[b as usize] = true;
-                }
-                Op::Neg(_, a) => read[a as usize] = true,
+            for a in op.reads() {
+                read[a as usize] = true;
             }
         }
         for &o in &outputs {
@@ -203,7 +294,7 @@ impl Program {
 
     /// How many operations one call runs.
     pub fn operations(&self) -> usize {
-        self.ops.len()
+        self.ops.iter().map(Op::weight).sum()
     }
 
     /// The outputs at `q` into `out`, using `registers` from [`Program::registers`];
@@ -252,6 +343,21 @@ impl Program {
                 Op::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
                 Op::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
                 Op::Neg(d, a) => r[d as usize] = -r[a as usize],
+                Op::AddProducts(d, a, b, c, e) => {
+                    r[d as usize] = r[a as usize] * r[b as usize] + r[c as usize] * r[e as usize]
+                }
+                Op::SubProducts(d, a, b, c, e) => {
+                    r[d as usize] = r[a as usize] * r[b as usize] - r[c as usize] * r[e as usize]
+                }
+                Op::AddProduct(d, a, b, c) => {
+                    r[d as usize] = r[a as usize] * r[b as usize] + r[c as usize]
+                }
+                Op::ProductSub(d, a, b, c) => {
+                    r[d as usize] = r[a as usize] * r[b as usize] - r[c as usize]
+                }
+                Op::SubProduct(d, a, b, c) => {
+                    r[d as usize] = r[c as usize] - r[a as usize] * r[b as usize]
+                }
             }
         }
         for (o, &reg) in out.iter_mut().zip(&self.outputs) {
@@ -313,6 +419,26 @@ impl Program {
                     r[d as usize] = lanes(r[a as usize], r[b as usize], |x, y| x * y)
                 }
                 Op::Neg(d, a) => r[d as usize] = r[a as usize].map(|x| -x),
+                Op::AddProducts(d, a, b, c, e) => {
+                    let (a, b, c, e) = (r[a as usize], r[b as usize], r[c as usize], r[e as usize]);
+                    r[d as usize] = core::array::from_fn(|l| a[l] * b[l] + c[l] * e[l]);
+                }
+                Op::SubProducts(d, a, b, c, e) => {
+                    let (a, b, c, e) = (r[a as usize], r[b as usize], r[c as usize], r[e as usize]);
+                    r[d as usize] = core::array::from_fn(|l| a[l] * b[l] - c[l] * e[l]);
+                }
+                Op::AddProduct(d, a, b, c) => {
+                    let (a, b, c) = (r[a as usize], r[b as usize], r[c as usize]);
+                    r[d as usize] = core::array::from_fn(|l| a[l] * b[l] + c[l]);
+                }
+                Op::ProductSub(d, a, b, c) => {
+                    let (a, b, c) = (r[a as usize], r[b as usize], r[c as usize]);
+                    r[d as usize] = core::array::from_fn(|l| a[l] * b[l] - c[l]);
+                }
+                Op::SubProduct(d, a, b, c) => {
+                    let (a, b, c) = (r[a as usize], r[b as usize], r[c as usize]);
+                    r[d as usize] = core::array::from_fn(|l| c[l] - a[l] * b[l]);
+                }
             }
         }
         for (o, &reg) in out.iter_mut().zip(&self.outputs) {
@@ -367,6 +493,23 @@ mod tests {
 
     /// Four vectors side by side give each vector's bits of `eval_with` (with a sin_cos
     /// that works lane by lane, as the runtime's does).
+    /// Products folded into the sums that read them: fewer operations to dispatch, the
+    /// same arithmetic (every node of the outputs' graph computed once).
+    #[test]
+    fn products_fold_into_their_sums() {
+        let (chain, derived) = shipped("ur5");
+        let m = &derived.model;
+        let ids: Vec<Id> = m.jacobian.iter().flatten().copied().collect();
+        let program = Program::new(&m.sym, &chain, &ids);
+        let arithmetic = m.sym.graph.op_count(&ids);
+        assert_eq!(program.operations(), arithmetic);
+        assert!(
+            program.ops.len() * 10 < arithmetic * 8,
+            "{} operations dispatched for {arithmetic}",
+            program.ops.len()
+        );
+    }
+
     #[test]
     fn lanes_give_each_vectors_bits() {
         let sin_cos = |x: [f64; 4]| (x.map(f64::sin), x.map(f64::cos));
