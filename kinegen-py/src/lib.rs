@@ -613,8 +613,9 @@ impl Robot {
     /// Every closed-form IK solution of `pose` (4×4) or of each pose of an (M, 4, 4)
     /// batch; `locked` is the locked joint's value of a 7-joint arm. Returns a dict:
     /// `q` (K, N) (a batch: (M, K, N), padded with NaN), `valid` (mask of real entries),
-    /// `exact` (solves the pose; else the least-squares nearest), `singular` (a factor
-    /// of det J vanishes), `within_limits`, `residual` (max |fk(q) - pose|), and for one
+    /// `exact` (solves the pose; else the least-squares nearest), `singular` (as the
+    /// generated `ik` flags a branch: a subproblem met a singular configuration, the
+    /// vanishing factors of det J measured there), `within_limits`, `residual` (max |fk(q) - pose|), and for one
     /// pose `singular_factors` (names of the vanishing factors of each solution).
     /// `residuals=False` leaves the residual out (NaN): measuring it evaluates fk once
     /// per solution, which costs more than the solving.

@@ -97,9 +97,9 @@ class Robot:
         locked: Optional[float] = None,
         residuals: bool = True,
     ) -> Dict[str, Any]:
-        """Every closed-form solution: ``q``, masks ``valid``, ``exact``, ``singular``,
-        ``within_limits``, and ``residual`` (NaN with ``residuals=False``; a batch of
-        poses adds a leading axis)."""
+        """Every closed-form solution: ``q``, masks ``valid``, ``exact``, ``singular``
+        (flagged as the generated ``ik`` flags it), ``within_limits``, and ``residual``
+        (NaN with ``residuals=False``; a batch of poses adds a leading axis)."""
     def ik_near(
         self, pose: npt.ArrayLike, q: npt.ArrayLike
     ) -> Union[Optional[_F64], Tuple[_F64, npt.NDArray[np.bool_]]]:
