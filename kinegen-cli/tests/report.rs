@@ -211,8 +211,13 @@ fn pages_are_valid_html5_with_every_formula_as_mathml_and_pictures_drawn() {
             .filter(|t| t.contains(" = 0") && t.contains("depends on"))
             .count();
         assert!(factors >= 2, "{name}: {factors} singular factors");
-        // The second order.
-        assert!(texts.iter().any(|t| t.starts_with("Jdot_qdot[")), "{name}");
+        // The second order: J̇q̇, J̇ and the Hessian, each entry named as FORMULAS names it.
+        for prefix in ["Jdot_qdot[", "Jdot[", "H["] {
+            assert!(
+                texts.iter().any(|t| t.starts_with(prefix)),
+                "{name}: {prefix}"
+            );
+        }
 
         // Four pictures, each drawing: the map's cells, the stick figures' lines, the
         // trajectory's curves.

@@ -1,9 +1,11 @@
 //! The closed forms as MathML, each with its plain-text form under it: FK and the
 //! Jacobian (the sections `show` prints, from [`crate::formulas::sections`]), det J,
-//! each singular factor with what it means, and the second order (`J̇ q̇`).
+//! each singular factor with what it means, and the second order (`J̇ q̇`, `J̇`, the
+//! Hessian).
 
 use std::fmt::Write;
 
+use kinegen_core::algebra::graph::Id;
 use kinegen_core::emit::code::Coder;
 use kinegen_core::emit::mathml::{self, escape, math, mathml_lhs, mtext};
 use kinegen_core::emit::text::to_text;
@@ -107,8 +109,10 @@ pub fn meaning(chain: &Chain, f: &Factor) -> String {
     format!("depends on {}; {kind}", joints.join(", "))
 }
 
-/// The second-order bias acceleration `J̇ q̇` (its non-zero entries; the counts of the
-/// other second-order outputs are in the stats section).
+/// The second order, each as the generated method computes it (its non-zero entries,
+/// named as `FORMULAS` names them): the bias acceleration `J̇ q̇`, then `J̇` and the
+/// Hessian `H[j] = ∂J/∂q_j`, each in a `<details>` element (open: its MathML is laid out
+/// like the rest; a reader folds it away).
 pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
     let mut body = String::new();
     let s = &derived.second;
@@ -119,34 +123,31 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
         ))),
         None => {
             let coder = Coder::new(chain, &derived.model.sym);
-            let body_ = coder.body(&s.jdot_qdot);
-            body.push_str(&html::p(&format!(
-                "Bias acceleration J̇(q, q̇)·q̇ in the world frame, [ax ay az αx αy αz]: the tool's \
-                 acceleration at q̈ = 0, so that ẍ = J·q̈ + J̇·q̇ ({}). q̇_i is joint i's rate.",
-                ops_text(&body_.ops)
-            )));
-            body.push_str("<p>where</p>\n");
-            for (n, f) in &body_.defs {
-                body.push_str(&line(&Line {
-                    text_lhs: n.clone(),
-                    latex_lhs: String::new(),
-                    meaning: kinegen_core::emit::docs::angle_sum_meaning(n)
-                        .map(|m| (m.replace('−', "-"), String::new())),
-                    rust: Some(f.clone()),
-                }));
-            }
-            let zero = coder.lit(0.0);
-            for (r, f) in body_.outputs.iter().enumerate() {
-                if *f == zero {
-                    continue;
-                }
-                body.push_str(&line(&Line {
-                    text_lhs: format!("Jdot_qdot[{r}]"),
-                    latex_lhs: String::new(),
-                    meaning: None,
-                    rust: Some(f.clone()),
-                }));
-            }
+            body.push_str(&group(
+                &coder,
+                &s.jdot_qdot,
+                "Bias acceleration J̇(q, q̇)·q̇ in the world frame, [ax ay az αx αy αz]: the \
+                 tool's acceleration at q̈ = 0, so that ẍ = J·q̈ + J̇·q̇",
+                |r| format!("Jdot_qdot[{r}]"),
+            ));
+            let n = chain.dof();
+            let rows: Vec<_> = s.jacobian_dot.iter().flatten().copied().collect();
+            let jdot = group(
+                &coder,
+                &rows,
+                "J̇ = dJ/dt in the world frame (6×N, entry [row][joint])",
+                |k| format!("Jdot[{}][{}]", k / n, k % n),
+            );
+            body.push_str(&details("J̇, the Jacobian's time derivative", &jdot));
+            let entries: Vec<_> = s.hessian.iter().flatten().flatten().copied().collect();
+            let hessian = group(
+                &coder,
+                &entries,
+                "Hessian H[j] = ∂J/∂q_j in the world frame (N × 6×N, entry [j][row][joint]), \
+                 so that J̇ = Σ_j H[j]·q̇_j",
+                |k| format!("H[{}][{}][{}]", k / (6 * n), k / n % 6, k % n),
+            );
+            body.push_str(&details("The Hessian ∂J/∂q", &hessian));
         }
     }
     Section {
@@ -154,6 +155,48 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
         title: "Second order".into(),
         body,
     }
+}
+
+/// The straight-line code of `ids` as the page shows it: what it is and costs, the
+/// shared intermediates, then each non-zero output (`name(k)` for the `k`-th).
+fn group(coder: &Coder, ids: &[Id], what: &str, name: impl Fn(usize) -> String) -> String {
+    let code = coder.body(ids);
+    let mut out = html::p(&format!(
+        "{what} ({}). q̇_i is joint i's rate.",
+        ops_text(&code.ops)
+    ));
+    if !code.defs.is_empty() {
+        out.push_str("<p>where</p>\n");
+    }
+    for (n, f) in &code.defs {
+        out.push_str(&line(&Line {
+            text_lhs: n.clone(),
+            latex_lhs: String::new(),
+            meaning: kinegen_core::emit::docs::angle_sum_meaning(n)
+                .map(|m| (m.replace('−', "-"), String::new())),
+            rust: Some(f.clone()),
+        }));
+    }
+    let zero = coder.lit(0.0);
+    for (k, f) in code.outputs.iter().enumerate() {
+        if *f != zero {
+            out.push_str(&line(&Line {
+                text_lhs: name(k),
+                latex_lhs: String::new(),
+                meaning: None,
+                rust: Some(f.clone()),
+            }));
+        }
+    }
+    out
+}
+
+/// `inner` under a heading a reader can fold.
+fn details(summary: &str, inner: &str) -> String {
+    format!(
+        "<details open>\n<summary>{}</summary>\n{inner}</details>\n",
+        escape(summary)
+    )
 }
 
 /// `det J`, `J̇q̇[r]`, and the names of [`mathml_lhs`] (`T[0][3]` → T with subscript
