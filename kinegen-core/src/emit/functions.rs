@@ -257,7 +257,7 @@ impl Out<'_> {
         let names: Vec<String> = (0..n)
             .flat_map(|i| matrix_names(&format!("T0_{}", i + 1), 3, 4))
             .collect();
-        let doc = formula_doc(
+        let doc = formula_doc_with_math(
             "Every joint's link frame in the world frame, `base · A1 ⋯ Ai` for i = 1..N (no tool).",
             &body,
             &names,
@@ -294,7 +294,7 @@ impl Out<'_> {
 
         let ids: Vec<Id> = self.model.jacobian_ee.iter().flatten().copied().collect();
         let body = self.coder.body(&ids);
-        let doc = formula_doc(
+        let doc = formula_doc_with_math(
             "Geometric Jacobian of the tool point expressed in the tool frame, `diag(Rᵀ, Rᵀ) · J`.",
             &body,
             &matrix_names("Jee", 6, n),

@@ -116,6 +116,8 @@ pub fn mathml_name(name: &str) -> String {
 ///     "<msub><mi>T</mi><mrow><mn>1</mn><mo>,</mo><mn>4</mn></mrow></msub>"
 /// );
 /// assert_eq!(mathml_lhs("c23"), "<msub><mi>c</mi><mn>23</mn></msub>");
+/// // Link 2's frame, entry (1, 4): (⁰T₂)₁,₄.
+/// assert!(mathml_lhs("T0_2[0][3]").contains("<mprescripts/><none/><mn>0</mn>"));
 /// ```
 pub fn mathml_lhs(name: &str) -> String {
     let Some((m, rest)) = name.split_once('[') else {
@@ -134,6 +136,14 @@ pub fn mathml_lhs(name: &str) -> String {
         1 => sub[0].clone(),
         _ => format!("<mrow>{}</mrow>", sub.join("<mo>,</mo>")),
     };
+    // `T0_3`, link 3's frame in the world frame (`frames`): ⁰T₃, its entry's indices
+    // after it, the frame in parentheses.
+    if let Some(k) = m.strip_prefix("T0_").filter(|k| k.parse::<usize>().is_ok()) {
+        return format!(
+            "<msub><mrow><mo>(</mo><mmultiscripts><mi>T</mi><mn>{k}</mn><none/><mprescripts/>\
+             <none/><mn>0</mn></mmultiscripts><mo>)</mo></mrow>{sub}</msub>"
+        );
+    }
     // `Jt` is J with subscript t already: its entry's indices follow after a comma.
     match name_parts(m) {
         NameParts {
