@@ -19,6 +19,9 @@
 #[path = "common/plots.rs"]
 mod plots;
 
+#[path = "../kinegen-cli/src/colour.rs"]
+mod colour;
+
 use std::error::Error;
 use std::f64::consts::PI;
 use std::path::Path;
@@ -101,25 +104,11 @@ fn coord(range: (f64, f64), i: usize) -> f64 {
     range.0 + (i as f64 + 0.5) * step(range)
 }
 
-/// Viridis, by linear interpolation between nine of its colours.
+/// Viridis: the colour scale of every picture the `kinegen` command draws (one table,
+/// `kinegen-cli/src/colour.rs`, included below).
 fn viridis(t: f64) -> RGBColor {
-    const STOPS: [(u8, u8, u8); 9] = [
-        (68, 1, 84),
-        (71, 44, 122),
-        (59, 81, 139),
-        (44, 113, 142),
-        (33, 144, 141),
-        (39, 173, 129),
-        (92, 200, 99),
-        (170, 220, 50),
-        (253, 231, 37),
-    ];
-    let t = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
-    let i = (t.floor() as usize).min(STOPS.len() - 2);
-    let f = t - i as f64;
-    let mix = |a: u8, b: u8| (a as f64 + f * (b as f64 - a as f64)).round() as u8;
-    let (a, b) = (STOPS[i], STOPS[i + 1]);
-    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+    let [r, g, b] = colour::viridis(t);
+    RGBColor(r, g, b)
 }
 
 /// Colour of `|det J|` on a log scale spanning [`DECADES`] below `max`.
