@@ -114,7 +114,7 @@ pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Genera
     generate_from(chain, header, &derive(chain, options))
 }
 
-/// [`generate`] from the chain's [`derive`]d results, for a caller that also reads them
+/// [`generate`] from the chain's [`derive()`]d results, for a caller that also reads them
 /// (the CLI's `stats` and `report`): the chain is derived once.
 ///
 /// ```
