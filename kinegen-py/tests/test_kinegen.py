@@ -372,6 +372,27 @@ def test_ik_flags_at_a_singular_pose(ur5):
         assert names == (["sin(q5) = 0"] if flagged else [])
 
 
+def test_a_batch_whose_later_poses_have_more_solutions(ur5):
+    # 4 (out of reach: least squares), 6 (q5 = 0) and 8 solutions, in that order: the
+    # batch's rows are spread out twice as it is solved, and equal the single calls.
+    far = np.eye(4)
+    far[0, 3] = 5.0
+    singular = ur5.fk(np.array([0.3, -1.0, 1.2, 0.4, 0.0, 0.7]))
+    regular = ur5.fk(np.array([0.3, -1.0, 1.2, 0.4, 0.5, 0.7]))
+    poses = np.stack([far, singular, regular, far])
+    many = ur5.ik(poses)
+    assert many["q"].shape == (4, 8, 6)
+    for i, pose in enumerate(poses):
+        one = ur5.ik(pose)
+        k = one["q"].shape[0]
+        assert many["valid"][i].sum() == k
+        np.testing.assert_array_equal(many["q"][i, :k], one["q"])
+        assert np.isnan(many["q"][i, k:]).all() and np.isnan(many["residual"][i, k:]).all()
+        for key in ["exact", "singular", "within_limits", "residual"]:
+            np.testing.assert_array_equal(many[key][i, :k], one[key])
+    assert [ur5.ik(p)["q"].shape[0] for p in poses] == [4, 6, 8, 4]
+
+
 def test_ik_out_of_reach_gives_no_exact_solution(ur5):
     pose = np.eye(4)
     pose[0, 3] = 5.0  # 5 m away: the UR5 reaches 0.85 m
