@@ -70,7 +70,7 @@ impl Tape {
                 }
             }
         }
-        // The rest one by one, in this thread's registers (a single call makes none).
+        // The rest one by one, in this thread's registers (no allocation per call).
         SCALAR_REGISTERS.with_borrow_mut(|regs| {
             for i in full..rows {
                 if layout.is_none() {
