@@ -12,7 +12,7 @@ use crate::algebra::poly::VarKind;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
 
-/// One operation: destination register, then operand registers. The last four fuse a
+/// One operation: destination register, then operand registers. The last five fuse a
 /// product into the sum or difference that is its only reader (`a·b ± c·d`, `a·b ± c`,
 /// `c − a·b`): one dispatch instead of two or three, each product and the sum rounded
 /// as the separate operations round them, so the bits are the same.
@@ -491,8 +491,6 @@ mod tests {
         }
     }
 
-    /// Four vectors side by side give each vector's bits of `eval_with` (with a sin_cos
-    /// that works lane by lane, as the runtime's does).
     /// Products folded into the sums that read them: fewer operations to dispatch, the
     /// same arithmetic (every node of the outputs' graph computed once).
     #[test]
@@ -510,6 +508,8 @@ mod tests {
         );
     }
 
+    /// Four vectors side by side give each vector's bits of `eval_with` (with a sin_cos
+    /// that works lane by lane, as the runtime's does).
     #[test]
     fn lanes_give_each_vectors_bits() {
         let sin_cos = |x: [f64; 4]| (x.map(f64::sin), x.map(f64::cos));
