@@ -127,7 +127,7 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
                 &coder,
                 &s.jdot_qdot,
                 "Bias acceleration J̇(q, q̇)·q̇ in the world frame, [ax ay az αx αy αz]: the \
-                 tool's acceleration at q̈ = 0, so that ẍ = J·q̈ + J̇·q̇",
+                 tool's acceleration at q̈ = 0, so that ẍ = J·q̈ + J̇·q̇; q̇_i is joint i's rate",
                 |r| format!("Jdot_qdot[{r}]"),
             ));
             let n = chain.dof();
@@ -135,7 +135,7 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
             let jdot = group(
                 &coder,
                 &rows,
-                "J̇ = dJ/dt in the world frame (6×N, entry [row][joint])",
+                "J̇ = dJ/dt in the world frame (6×N, entry [row][joint]; q̇_i is joint i's rate)",
                 |k| format!("Jdot[{}][{}]", k / n, k % n),
             );
             body.push_str(&details("J̇, the Jacobian's time derivative", &jdot));
@@ -161,10 +161,7 @@ pub fn second_order(chain: &Chain, derived: &Derived) -> Section {
 /// shared intermediates, then each non-zero output (`name(k)` for the `k`-th).
 fn group(coder: &Coder, ids: &[Id], what: &str, name: impl Fn(usize) -> String) -> String {
     let code = coder.body(ids);
-    let mut out = html::p(&format!(
-        "{what} ({}). q̇_i is joint i's rate.",
-        ops_text(&code.ops)
-    ));
+    let mut out = html::p(&format!("{what} ({}).", ops_text(&code.ops)));
     if !code.defs.is_empty() {
         out.push_str("<p>where</p>\n");
     }
