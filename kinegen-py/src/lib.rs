@@ -273,7 +273,8 @@ fn shaped<'py, T: numpy::Element>(
 
 impl Robot {
     /// Evaluate `f` (which writes `len` values from one joint vector) on every row of `q`,
-    /// the GIL released for a batch; the result has shape `shape`, `(M, *shape)` for a batch.
+    /// the GIL released for a batch; the result has shape `shape`, `(M, *shape)` for a
+    /// batch.
     fn map_q<'py, F>(
         &self,
         py: Python<'py>,
@@ -302,8 +303,8 @@ impl Robot {
     }
 
     /// Evaluate `tape(inner)` on every row of `q` (four rows side by side, the GIL
-    /// released for a batch), each row's outputs laid out by `layout` (`None`: as they are); the
-    /// result has shape `shape`, `(M, *shape)` for a batch.
+    /// released for a batch), each row's outputs laid out by `layout` (`None`: as they
+    /// are); the result has shape `shape`, `(M, *shape)` for a batch.
     fn map_tape<'py>(
         &self,
         py: Python<'py>,
@@ -610,8 +611,9 @@ impl Robot {
     /// `q` (K, N) (a batch: (M, K, N), padded with NaN), `valid` (mask of real entries),
     /// `exact` (solves the pose; else the least-squares nearest), `singular` (as the
     /// generated `ik` flags a branch: a subproblem met a singular configuration, the
-    /// vanishing factors of det J measured there), `within_limits`, `residual` (max |fk(q) - pose|), and for one
-    /// pose `singular_factors` (names of the vanishing factors of each solution).
+    /// vanishing factors of det J measured there), `within_limits`, `residual`
+    /// (max |fk(q) - pose|), and for one pose `singular_factors` (names of the vanishing
+    /// factors of each solution).
     /// `residuals=False` leaves the residual out (NaN): measuring it evaluates fk once
     /// per solution, which costs more than the solving.
     #[pyo3(signature = (pose, locked=None, residuals=true))]
