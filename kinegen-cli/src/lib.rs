@@ -30,7 +30,7 @@ pub mod robots;
 pub mod stats;
 
 use clap::{Parser, Subcommand};
-use kinegen_core::{derive, generate, generate_from, ItemHeader};
+use kinegen_core::{derive, generate, ItemHeader};
 
 pub use error::CliError;
 pub use formulas::What;
@@ -278,16 +278,11 @@ pub fn run(cli: &Cli) -> Result<String, CliError> {
         }
         Command::Stats { robot, urdf, json } => {
             let (chain, options) = robots::load(robot, urdf)?;
-            let t = std::time::Instant::now();
-            let derived = derive(&chain, &options);
-            let generated = generate_from(&chain, &ItemHeader::public(&chain.name), &derived);
-            let time_ms = t.elapsed().as_secs_f64() * 1e3;
-            let dets = det_hook::determinants(&chain, &derived);
-            let s = stats::stats(&chain, &derived.model, &dets, &generated, time_ms);
+            let m = stats::measured(&chain, &options);
             Ok(if *json {
-                format!("{}\n", stats::to_json(&s))
+                format!("{}\n", stats::to_json(&m.stats))
             } else {
-                stats::to_table(&chain, &s, &dets.missing)
+                stats::to_table(&chain, &m.stats, &m.dets.missing)
             })
         }
         Command::Ik {

@@ -4,10 +4,38 @@ use std::fmt::Write;
 
 use kinegen_core::emit::code::{Coder, OpCount};
 use kinegen_core::kinematics::model::Model;
-use kinegen_core::{Chain, Generated, StageTimes};
+use kinegen_core::StageTimes;
+use kinegen_core::{derive, generate_from, Chain, Derived, Generated, ItemHeader, Options};
 use serde_json::{json, Value};
 
-use crate::det_hook::Determinants;
+use crate::det_hook::{self, Determinants};
+
+/// A chain derived and its code emitted once, timed: the derivation, the determinants
+/// and the counts that `kinegen stats` prints and `kinegen report` lays out.
+pub struct Measured {
+    /// The engine's symbolic results.
+    pub derived: Derived,
+    /// det J (or the task det) and its factors, or why none.
+    pub dets: Determinants,
+    /// The counts of the emitted code and the engine's time, derivation and emission.
+    pub stats: Stats,
+}
+
+/// [`Measured`] for `chain`: `derive`, then `generate_from` on its result (the code the
+/// macro emits for `pub struct <Name>`), the wall time spanning both.
+pub fn measured(chain: &Chain, options: &Options) -> Measured {
+    let t = std::time::Instant::now();
+    let derived = derive(chain, options);
+    let generated = generate_from(chain, &ItemHeader::public(&chain.name), &derived);
+    let time_ms = t.elapsed().as_secs_f64() * 1e3;
+    let dets = det_hook::determinants(chain, &derived);
+    let stats = stats(chain, &derived.model, &dets, &generated, time_ms);
+    Measured {
+        derived,
+        dets,
+        stats,
+    }
+}
 
 /// Counts per output and the engine time.
 #[derive(Clone, Debug)]

@@ -29,26 +29,29 @@ pub mod trajectory;
 use std::io::Write;
 use std::path::Path;
 
-use kinegen_core::{generate_from, Chain, Derived, ItemHeader};
+use kinegen_core::{Chain, Derived};
 
-use crate::det_hook;
 use crate::error::CliError;
 
-/// The page of `chain`; `stats` are the operation counts and engine time of its
-/// generated code, `map` its reachability map where one was asked for (or why none).
+/// The page of a chain from what [`crate::stats::measured`] gives (its derivation,
+/// determinants, operation counts and engine time); `map` its reachability map where
+/// one was asked for (or why none).
 pub fn page(
     chain: &Chain,
-    derived: &Derived,
-    stats: &crate::stats::Stats,
+    measured: &crate::stats::Measured,
     map: Option<&Result<crate::reach::Map, String>>,
 ) -> String {
-    let dets = det_hook::determinants(chain, derived);
+    let crate::stats::Measured {
+        derived,
+        dets,
+        stats,
+    } = measured;
     let solutions = ik::Solutions::of(chain, derived);
     let mut sections = vec![
         robot::section(chain),
-        formulas::first_order(chain, derived, &dets),
-        formulas::singular_factors(chain, &dets),
-        singularity_map::section(chain, derived, &dets, &solutions),
+        formulas::first_order(chain, derived, dets),
+        formulas::singular_factors(chain, dets),
+        singularity_map::section(chain, derived, dets, &solutions),
         ik::section(chain, derived, &solutions),
         stick_figures::section(chain, &solutions),
         trajectory::section(chain, &solutions),
@@ -76,14 +79,9 @@ pub fn run(
     }
     let default = format!("{}.html", file_stem(&chain.name));
     let path = output.map_or_else(|| Path::new(&default).to_path_buf(), Path::to_path_buf);
-    let t = std::time::Instant::now();
-    let derived = kinegen_core::derive(chain, options);
-    let generated = generate_from(chain, &ItemHeader::public(&chain.name), &derived);
-    let time_ms = t.elapsed().as_secs_f64() * 1e3;
-    let dets = det_hook::determinants(chain, &derived);
-    let s = crate::stats::stats(chain, &derived.model, &dets, &generated, time_ms);
-    let map = reach.map(|r| reach_map(chain, &derived, r));
-    let text = page(chain, &derived, &s, map.as_ref());
+    let measured = crate::stats::measured(chain, options);
+    let map = reach.map(|r| reach_map(chain, &measured.derived, r));
+    let text = page(chain, &measured, map.as_ref());
     crate::reach::write_atomically(&path, |f| {
         f.write_all(text.as_bytes()).map_err(|e| e.to_string())
     })?;
