@@ -161,7 +161,7 @@ pub enum Command {
         /// Poses per voxel: 50 (Reuleaux's, on a sphere of radius one voxel) or DxR (D
         /// approach directions times R rolls about each, at the centre; 200x12 is the
         /// Zacharias density).
-        #[arg(long, default_value = "50")]
+        #[arg(long, default_value = reach::DEFAULT_ORIENTATIONS)]
         orientations: String,
         /// The box of voxel centres, `xmin,ymin,zmin,xmax,ymax,zmax` in metres (default:
         /// Reuleaux's 3 m cube, ±1.5 m around the base).
@@ -169,7 +169,7 @@ pub enum Command {
         bounds: Option<Vec<f64>>,
         /// For a 7-joint arm: values of the locked joint tried per pose (evenly spaced
         /// over its limits).
-        #[arg(long, default_value_t = 8)]
+        #[arg(long, default_value_t = reach::DEFAULT_FREE_SAMPLES)]
         free_samples: usize,
         /// Solve the voxels outside the arm's reach sphere too (the map is the same).
         #[arg(long)]

@@ -30,6 +30,12 @@ pub use grid::Grid;
 pub use map::{Map, Settings, Voxel};
 pub use orientations::Orientations;
 
+/// `--orientations` by default: Reuleaux's 50 poses per voxel.
+pub const DEFAULT_ORIENTATIONS: &str = "50";
+
+/// `--free-samples` by default: values of a 7-joint arm's locked joint tried per pose.
+pub const DEFAULT_FREE_SAMPLES: usize = 8;
+
 /// What `kinegen reach` was asked.
 #[derive(Clone, Debug)]
 pub struct Request {

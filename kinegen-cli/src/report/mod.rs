@@ -88,13 +88,14 @@ pub fn run(
     Ok(format!("wrote {} ({} bytes)\n", path.display(), text.len()))
 }
 
-/// The map `kinegen reach --resolution r` computes, or why there is none (a robot
-/// without a closed-form IK).
+/// The map `kinegen reach --resolution r` computes with its other options at their
+/// defaults, or why there is none (a robot without a closed-form IK).
 fn reach_map(chain: &Chain, derived: &Derived, r: f64) -> Result<crate::reach::Map, String> {
     let settings = crate::reach::Settings {
         grid: crate::reach::Grid::reuleaux(r).map_err(|e| e.to_string())?,
-        orientations: crate::reach::Orientations::parse("50").map_err(|e| e.to_string())?,
-        free_samples: 8,
+        orientations: crate::reach::Orientations::parse(crate::reach::DEFAULT_ORIENTATIONS)
+            .map_err(|e| e.to_string())?,
+        free_samples: crate::reach::DEFAULT_FREE_SAMPLES,
         skip: true,
         threads: None,
         progress: false,
