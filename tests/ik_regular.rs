@@ -271,10 +271,57 @@ fn random_spherical_wrist_robots() {
     });
 }
 
+/// The Franka Panda (joint 7 locked, read from the tool) and the KUKA iiwa 14 (joint 3
+/// locked), each at three values of its locked joint.
+#[test]
+fn spherical_shoulder_robots() {
+    let (panda, iiwa) = (
+        Panda::default().ik_geometry(),
+        KukaIiwa14::default().ik_geometry(),
+    );
+    let family = [
+        ("Panda, q7 = -1.3", panda.lock::<6>(6, -1.3).reversed()),
+        ("Panda, q7 = 0.4", panda.lock::<6>(6, 0.4).reversed()),
+        ("Panda, q7 = 2.2", panda.lock::<6>(6, 2.2).reversed()),
+        ("iiwa, q3 = -1.3", iiwa.lock::<6>(2, -1.3)),
+        ("iiwa, q3 = 0.4", iiwa.lock::<6>(2, 0.4)),
+        ("iiwa, q3 = 2.2", iiwa.lock::<6>(2, 2.2)),
+    ];
+    robots(&family, spherical_two_intersecting(), 300);
+}
+
+#[test]
+fn random_spherical_shoulder_robots() {
+    random_tables("Panda-like", spherical_two_intersecting(), 9, |rng| {
+        let panda = {
+            let mut l = || length(rng);
+            let (d1, d3, a4, a5, d5, a7, d_flange) = (l(), l(), l(), l(), l(), l(), l());
+            Panda {
+                d1,
+                d3,
+                a4,
+                a5,
+                d5,
+                a7,
+                d_flange,
+            }
+        };
+        let q7 = 6.0 * rng.next_f64() - 3.0;
+        panda.ik_geometry().lock::<6>(6, q7).reversed()
+    });
+}
+
 fn three_parallel_two_intersecting() -> (Lanes, ByBranch) {
     (
         regular::three_parallel_two_intersecting,
         families::three_parallel_two_intersecting_by_branch,
+    )
+}
+
+fn spherical_two_intersecting() -> (Lanes, ByBranch) {
+    (
+        regular::spherical_two_intersecting,
+        families::spherical_two_intersecting_by_branch,
     )
 }
 

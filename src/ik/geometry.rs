@@ -369,6 +369,29 @@ pub(crate) mod examples {
             p_tool: V3::new(a2 + a3, d3, d4),
         }
     }
+
+    /// The KUKA iiwa 14 (DH numbers) with joint 3 locked at 0.5 rad: the shoulder's axes
+    /// meet, an elbow, a spherical orthogonal wrist.
+    pub(crate) fn iiwa_locked() -> Geometry<6> {
+        let (d1, d3, d5, d7) = (0.36, 0.42, 0.4, 0.126);
+        let (z, y) = (V3::z(), V3::y());
+        let turned = rot(&z, 0.5);
+        let w = V3::new(0.0, 0.0, d1 + d3 + d5);
+        Geometry {
+            h: [z, y, -(turned * y), z, turned * y, z],
+            p: [
+                V3::zeros(),
+                V3::new(0.0, 0.0, d1),
+                V3::new(0.0, 0.0, d1 + d3),
+                w,
+                w,
+                w,
+            ],
+            prismatic: [false; 6],
+            r_tool: turned,
+            p_tool: w + z * d7,
+        }
+    }
 }
 
 #[cfg(test)]

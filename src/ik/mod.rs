@@ -5,7 +5,7 @@
 //!   the `kinematics!` macro classifies the robot's joint axes exactly at expansion time
 //!   and, when a family fits, generates `ik`, `ik_near` and `IK_FAMILY`. Every solution,
 //!   in a fixed-size [`IkSolutions`], each flagged exact or least squares, singular, and
-//!   within limits ([`solutions`]). Regular poses of the UR and PUMA families take
+//!   within limits ([`solutions`]). Regular poses of the UR, PUMA and h1 ∩ h2 families take
 //!   [`regular`]: the branches of each level side by side in [`lanes`]. An arm that fits a
 //!   family only read from the tool to the base (the Panda) is solved through
 //!   [`reversed`].

@@ -51,6 +51,11 @@ macro_rules! best_build {
     }};
 }
 
+// After `best_build!`, which its solver uses.
+mod spherical_two_intersecting;
+
+pub use spherical_two_intersecting::spherical_two_intersecting;
+
 /// `v` in the coordinates of `plane` (`e1·v`, `e2·v`, `k·v`).
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn coords(plane: &Plane, v: &V3) -> V3 {
@@ -442,7 +447,7 @@ fn spherical_two_parallel_lanes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ik::geometry::examples::{puma, ur5};
+    use crate::ik::geometry::examples::{iiwa_locked, puma, ur5};
     use crate::ik::geometry::rot;
 
     /// Poses of `g` from seeded configurations, some moved out of reach.
@@ -465,7 +470,7 @@ mod tests {
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
         std::println!("AVX2: {}", std::is_x86_feature_detected!("avx2"));
         type Solve = fn(&Geometry<6>, &Pose, &mut Candidates<6, 8>) -> Option<()>;
-        let solvers: [(Geometry<6>, Solve, Solve); 2] = [
+        let solvers: [(Geometry<6>, Solve, Solve); 3] = [
             (
                 ur5(),
                 |g, p, o| three_parallel_two_intersecting_lanes(g, p, o),
@@ -475,6 +480,11 @@ mod tests {
                 puma(),
                 |g, p, o| spherical_two_parallel_lanes(g, p, o),
                 spherical_two_parallel,
+            ),
+            (
+                iiwa_locked(),
+                |g, p, o| spherical_two_intersecting::spherical_two_intersecting_lanes(g, p, o),
+                spherical_two_intersecting,
             ),
         ];
         for (g, baseline, chosen) in solvers {

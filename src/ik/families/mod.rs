@@ -55,7 +55,8 @@ pub use position::{
 };
 pub use spherical::spherical;
 pub use spherical_two_intersecting::{
-    spherical_two_intersecting, spherical_two_intersecting_prismatic,
+    spherical_two_intersecting, spherical_two_intersecting_by_branch,
+    spherical_two_intersecting_prismatic,
 };
 pub use spherical_two_parallel::{spherical_two_parallel, spherical_two_parallel_by_branch};
 pub use srs::{

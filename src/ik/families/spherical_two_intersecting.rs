@@ -2,13 +2,16 @@
 //! axes meet): with joint 3 revolute, a KUKA iiwa with its joint 3 locked; with joint 3
 //! prismatic, the Stanford arm. The elbow from SP3 (prismatic: a quadratic in q3), (q1, q2)
 //! from SP2, then the wrist (`wrist.rs`). Where a 7-joint arm's locked joint lines the
-//! shoulder's axes up, the parallel-shoulder decomposition instead.
+//! shoulder's axes up, the parallel-shoulder decomposition instead. Regular poses of an
+//! orthogonal wrist, the shoulder's axes well apart, take the lanes of
+//! [`regular::spherical_two_intersecting`] first.
 
 use super::position::{shoulder_elbow, shoulder_slide};
 use super::wrist::{with_wrist, Wrist};
-use super::WristPair;
+use super::{regular_first, Solvers, WristPair};
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
 use crate::ik::polish::polish;
+use crate::ik::regular;
 use crate::ik::setup::wrist_centre;
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1, sp3, sp4, Fit};
@@ -20,6 +23,28 @@ use crate::ik::subproblems::{sp1, sp3, sp4, Fit};
 /// 3. (q1, q2) — SP2: `rot(−h1, q1) p16 = rot(h2, q2) (p23 + R3 p34)`
 /// 4. wrist as in [`spherical_two_parallel`](fn@super::spherical_two_parallel) (step 5).
 pub fn spherical_two_intersecting(
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    pair: WristPair,
+    out: &mut Candidates<6, 8>,
+) {
+    // Nearly parallel shoulder axes need the checks and the polish below.
+    if g.h[0].cross(&g.h[1]).norm_squared() <= SHOULDER_GRAZING {
+        spherical_two_intersecting_by_branch(g, pose, free, pair, out);
+        return;
+    }
+    let solvers: Solvers = (
+        regular::spherical_two_intersecting,
+        spherical_two_intersecting_by_branch,
+    );
+    regular_first(solvers, g, pose, free, pair, out);
+}
+
+/// [`spherical_two_intersecting`] one branch after another, for every pose (the singular
+/// and unreachable ones too); the regular ones take the lanes of
+/// [`regular::spherical_two_intersecting`] first.
+pub fn spherical_two_intersecting_by_branch(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],

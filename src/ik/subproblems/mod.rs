@@ -40,7 +40,7 @@ pub use sp1::{
     sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar, sp1_planar_angle, sp1_planar_sides,
     sp1_sides, Planar, Plane,
 };
-pub use sp2::sp2;
+pub use sp2::{sp2, Sp2Lanes};
 pub use sp3::{sp3, Sp3, Sp3Lanes};
 pub use sp4::{sp4, Sp4, Sp4Lanes};
 pub use sp5::{sp5, Sp5Roots};

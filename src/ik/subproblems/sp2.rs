@@ -1,10 +1,14 @@
 //! **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
 //! about `k1` and of `p2` about `k2` meet. The meeting point from the two axes, then each
 //! angle by SP1; on one axis (`k2 = ±k1`), only `θ1 ∓ θ2` is fixed.
+//!
+//! Its forms: one pair of vectors ([`sp2`]), and the branches of a level side by side —
+//! one `p1`, a `p2` per lane — for a regular pose ([`Sp2Lanes`]).
 
 use super::sp1::{sp1, sp1_angle};
 use super::{Fit, EPS, MERGE_RELATIVE, ON_AXIS, ROOT_MERGE};
 use crate::ik::geometry::{sqrt0, Angle, V3};
+use crate::ik::lanes::{Lanes, Vectors};
 
 /// **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
 /// about `k1` and of `p2` about `k2` meet. Up to two pairs; a double root when the circles
@@ -69,6 +73,59 @@ pub fn sp2(
     (out, zs.1, fit)
 }
 
+/// [`sp2`]'s meeting points for one `p1` and `L` vectors `p2` side by side, for a regular
+/// pose (the angles are SP1's from each point, left to the caller's batch of `atan2`).
+/// `M = 2 L` points: lanes `2i` and `2i + 1` are lane `i`'s two, in [`sp2`]'s order;
+/// where lane `i`'s circles miss (`exact[i]` false), its one least-squares point in
+/// both. The same arithmetic as [`sp2`], lane by lane.
+#[derive(Clone, Copy, Debug)]
+pub struct Sp2Lanes<const L: usize, const M: usize> {
+    /// The meeting points `z`, with `rot(k1, θ1) p1 = z = rot(k2, θ2) p2`.
+    pub z: Vectors<M>,
+    /// Lanes whose circles meet in two points (the others: least squares).
+    pub exact: [bool; L],
+}
+
+impl<const L: usize, const M: usize> Sp2Lanes<L, M> {
+    /// `None` where some lane is not regular: the axes are one line, the circles touch
+    /// (a double root, as [`sp2`] merges it), or `‖p1‖ ≠ ‖p2‖` (which [`sp2`] solves in
+    /// least squares: the caller's data upstream was not exact). `M` must be `2 L`.
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
+    pub fn solve(p1: &V3, p2: &Vectors<L>, k1: &V3, k2: &V3) -> Option<Self> {
+        debug_assert!(M == 2 * L);
+        let c12 = k1.dot(k2);
+        let n = k1.cross(k2);
+        let nn = n.norm_squared();
+        if nn <= ON_AXIS {
+            return None;
+        }
+        let (a1, a2) = (k1.dot(p1), p2.dot_fixed(k2));
+        let alpha = (Lanes::splat(a1) - a2 * c12) / nn;
+        let beta = (a2 - c12 * a1) / nn;
+        let r1 = p1.norm_squared();
+        let r2 = p2.dot(p2);
+        let rr = (r2 + r1) * 0.5;
+        let ab = alpha * beta * c12;
+        let g2 = (rr - alpha * alpha - beta * beta - ab * 2.0) / nn;
+        let terms = rr + alpha * alpha + beta * beta + ab.map(f64::abs) * 2.0;
+        let mut exact = [true; L];
+        for (i, exact) in exact.iter_mut().enumerate() {
+            let double =
+                g2.0[i].abs() * nn <= (ROOT_MERGE * EPS * terms.0[i]).max(MERGE_RELATIVE * rr.0[i]);
+            // False for a NaN too: not regular.
+            let same_length = (r1 - r2.0[i]).abs() <= 1e-9 * (r1 + r2.0[i]);
+            if double || !same_length || g2.0[i].is_nan() {
+                return None;
+            }
+            *exact = g2.0[i] >= 0.0;
+        }
+        let g = g2.map(sqrt0);
+        let base = Vectors::splat(k1) * alpha + Vectors::splat(k2) * beta;
+        let z = base.twice::<M>() + Vectors::splat(&n) * Lanes::interleave(g, -g);
+        Some(Sp2Lanes { z, exact })
+    }
+}
+
 /// SP2 on one axis, `k2 = σ k1`: `rot(k1, θ1 − σ θ2) p1 = p2`, so SP1 gives `θ1 − σ θ2`;
 /// `θ1` takes the caller's value (free) and `θ2 = σ (θ1 − φ)`.
 fn one_axis(
@@ -125,6 +182,47 @@ mod tests {
         assert!(pairs[..n]
             .iter()
             .any(|(t1, t2)| (t1.theta - 0.4).abs() < 1e-12 && (t2.theta - 0.9).abs() < 1e-12));
+    }
+
+    /// The lanes give [`sp2`]'s meeting points (its angles' SP1 from each), in its
+    /// order, and its least-squares point where the circles miss.
+    #[test]
+    fn sp2_lanes_meet_the_circles_as_sp2_does() {
+        use super::super::sp1::sp1_sides;
+        use super::super::wrap;
+        let (k1, k2) = (unit(0.0, 0.0, 1.0), unit(0.3, 1.0, 0.0));
+        let p1 = V3::new(0.2, -0.4, 0.7);
+        // Two p2 of p1's length: one whose circle meets p1's, one that misses it.
+        let meets = rot(&k2, -0.9) * rot(&k1, 0.4) * p1;
+        // (Its circle about k2 keeps |z| ≤ 0.26, p1's about z has z = 0.7.)
+        let misses = (k2 * 0.9 + V3::z() * 0.3).normalize() * p1.norm();
+        let p2 = Vectors {
+            x: Lanes([meets.x, misses.x]),
+            y: Lanes([meets.y, misses.y]),
+            z: Lanes([meets.z, misses.z]),
+        };
+        let lanes = Sp2Lanes::<2, 4>::solve(&p1, &p2, &k1, &k2).expect("regular");
+        assert_eq!(lanes.exact, [true, false]);
+        for (i, p2) in [meets, misses].iter().enumerate() {
+            let (pairs, n, fit) = sp2(&p1, p2, &k1, &k2, (0.0, 0.0));
+            assert_eq!((n, fit == Fit::Exact), (2 - i, i == 0));
+            for (r, (t1, t2)) in pairs[..n].iter().enumerate() {
+                let l = 2 * i + r;
+                let z = V3::new(lanes.z.x.0[l], lanes.z.y.0[l], lanes.z.z.0[l]);
+                for (p, k, t) in [(&p1, &k1, t1), (p2, &k2, t2)] {
+                    let (y, x, _) = sp1_sides(p, &z, k).expect("off the axis");
+                    assert!(wrap(libm::atan2(y, x) - t.theta).abs() < 1e-14);
+                }
+            }
+        }
+        // Circles that touch are not regular.
+        let touch = rot(&k2, -0.9) * rot(&k1, 0.4) * (k1 * p1.norm());
+        let p2 = Vectors {
+            x: Lanes([touch.x]),
+            y: Lanes([touch.y]),
+            z: Lanes([touch.z]),
+        };
+        assert!(Sp2Lanes::<1, 2>::solve(&(k1 * p1.norm()), &p2, &k1, &k2).is_none());
     }
 
     #[test]
