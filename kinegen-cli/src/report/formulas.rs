@@ -196,17 +196,9 @@ fn details(summary: &str, inner: &str) -> String {
     )
 }
 
-/// `det J`, `J̇q̇[r]`, and the names of [`mathml_lhs`] (`T[0][3]` → T with subscript
-/// 1,4: 1-based, as the LaTeX form).
+/// `det J`, and the names of [`mathml_lhs`] (`T[0][3]` → T with subscript 1,4: 1-based,
+/// as the LaTeX form; `Jdot_qdot[2]` → (J̇q̇)₃).
 pub fn lhs(name: &str) -> String {
-    if let Some(r) = name.strip_prefix("Jdot_qdot[") {
-        let r: usize = r.trim_end_matches(']').parse().unwrap_or(0);
-        return format!(
-            "<msub><mrow><mover accent=\"true\"><mi>J</mi><mo>&#x2D9;</mo></mover>\
-             <mover accent=\"true\"><mi>q</mi><mo>&#x2D9;</mo></mover></mrow><mn>{}</mn></msub>",
-            r + 1
-        );
-    }
     match name {
         "det J" => "<mrow><mi>det</mi><mo>&#x2061;</mo><mi>J</mi></mrow>".into(),
         "det Jt" => {

@@ -74,9 +74,9 @@ pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
 
 /// A function's doc as [`formula_doc`], then the same formulas as MathML (one
 /// `<math>` per line, in an HTML block rustdoc passes through), so the rendered docs
-/// show mathematics beside the text form. For the first-order outputs (FK, the frames,
-/// both Jacobians): the second-order ones (the UR5's Hessian alone is 128 lines) keep
-/// the text alone in rustdoc; `kinegen report` shows them as MathML.
+/// show mathematics beside the text form: every generated method with formulas (FK, the
+/// frames, the Jacobians, the second order, the determinant's gradient), as `kinegen
+/// report` shows them.
 pub fn formula_doc_with_math(summary: &str, body: &Body, names: &[String]) -> String {
     let mut lines = Vec::new();
     for (n, e) in &body.defs {

@@ -5,7 +5,7 @@
 use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::emit::code::{Body, Coder, OpCount};
-use crate::emit::docs::{formula_doc, formula_doc_with_math, math_block, matrix_names};
+use crate::emit::docs::{formula_doc_with_math, math_block, matrix_names};
 use crate::emit::formulas::Formulas;
 use crate::emit::ik::{items as ik_items, CheckImpl, SingularCheck};
 pub use crate::emit::item::{Const, Item, Method, MethodBody};
@@ -328,7 +328,7 @@ impl Out<'_> {
         let body = self.coder.body(&ids);
         let rows: Vec<&str> = task.iter().map(|r| r.name()).collect();
         let names = matrix_names("Jt", task.len(), n);
-        let doc = formula_doc(
+        let doc = formula_doc_with_math(
             &format!(
                 "Task Jacobian: rows `[{}]` of the geometric Jacobian.",
                 rows.join(", ")

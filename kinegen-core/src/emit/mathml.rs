@@ -107,7 +107,8 @@ pub fn mathml_name(name: &str) -> String {
 
 /// The left-hand side of a listed formula: a matrix entry `T[0][3]` as T with the
 /// 1-based subscript `1,4` (as the LaTeX form numbers them; `Jt[1][2]` → J with the
-/// subscript `t,2,3`), any other name as [`mathml_name`].
+/// subscript `t,2,3`; `Jdot[0][1]` → J̇₁,₂; `Jdot_qdot[2]` → (J̇q̇)₃; `ddet[1]` →
+/// ∂det J/∂q₂), any other name as [`mathml_name`].
 ///
 /// ```
 /// use kinegen_core::emit::mathml::mathml_lhs;
@@ -118,6 +119,12 @@ pub fn mathml_name(name: &str) -> String {
 /// assert_eq!(mathml_lhs("c23"), "<msub><mi>c</mi><mn>23</mn></msub>");
 /// // Link 2's frame, entry (1, 4): (⁰T₂)₁,₄.
 /// assert!(mathml_lhs("T0_2[0][3]").contains("<mprescripts/><none/><mn>0</mn>"));
+/// assert_eq!(
+///     mathml_lhs("Jt[1][2]"),
+///     "<msub><mi>J</mi><mrow><mi>t</mi><mo>,</mo><mrow><mn>2</mn><mo>,</mo><mn>3</mn></mrow></mrow></msub>"
+/// );
+/// assert!(mathml_lhs("Jee_dot[0][1]").starts_with("<msub><mover accent=\"true\"><mi>J</mi>"));
+/// assert!(mathml_lhs("ddet[1]").starts_with("<mfrac>"));
 /// ```
 pub fn mathml_lhs(name: &str) -> String {
     let Some((m, rest)) = name.split_once('[') else {
@@ -144,18 +151,45 @@ pub fn mathml_lhs(name: &str) -> String {
              <none/><mn>0</mn></mmultiscripts><mo>)</mo></mrow>{sub}</msub>"
         );
     }
-    // `Jt` is J with subscript t already: its entry's indices follow after a comma.
-    match name_parts(m) {
-        NameParts {
-            accent: Accent::None,
-            base: Base::Letter(l),
-            sub: s,
-        } if !s.is_empty() => format!(
-            "<msub><mi>{}</mi><mrow>{}<mo>,</mo>{sub}</mrow></msub>",
-            escape(&l),
-            subscript(&s)
+    // The Jacobians' names (`FORMULAS`' and the docs'): J with its frame as a subscript
+    // (`Jt`, `Jee`), dotted for the rates; the entry's indices after a comma.
+    let dot = |x: &str| format!("<mover accent=\"true\">{x}<mo>&#x2D9;</mo></mover>");
+    let (base, frame) = match m {
+        "Jt" => ("<mi>J</mi>".to_string(), "t"),
+        "Jee" => ("<mi>J</mi>".to_string(), "ee"),
+        "Jdot" => (dot("<mi>J</mi>"), ""),
+        "Jee_dot" => (dot("<mi>J</mi>"), "ee"),
+        "Jdot_qdot" => (
+            format!("<mrow>{}{}</mrow>", dot("<mi>J</mi>"), dot("<mi>q</mi>")),
+            "",
         ),
-        _ => format!("<msub>{}{sub}</msub>", mathml_name(m)),
+        // The determinant's gradient: ∂det J/∂q_j.
+        "ddet" if idx.len() == 1 => {
+            return format!(
+                "<mfrac><mrow><mo>∂</mo><mi>det</mi><mo>&#x2061;</mo><mi>J</mi></mrow>\
+                 <mrow><mo>∂</mo><msub><mi>q</mi>{sub}</msub></mrow></mfrac>"
+            )
+        }
+        // A letter with a subscript of its own: the entry's indices after a comma.
+        _ => {
+            return match name_parts(m) {
+                NameParts {
+                    accent: Accent::None,
+                    base: Base::Letter(l),
+                    sub: s,
+                } if !s.is_empty() => format!(
+                    "<msub><mi>{}</mi><mrow>{}<mo>,</mo>{sub}</mrow></msub>",
+                    escape(&l),
+                    subscript(&s)
+                ),
+                _ => format!("<msub>{}{sub}</msub>", mathml_name(m)),
+            }
+        }
+    };
+    if frame.is_empty() {
+        format!("<msub>{base}{sub}</msub>")
+    } else {
+        format!("<msub>{base}<mrow><mi>{frame}</mi><mo>,</mo>{sub}</mrow></msub>")
     }
 }
 

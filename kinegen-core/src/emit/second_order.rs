@@ -5,7 +5,7 @@
 
 use crate::algebra::graph::Id;
 use crate::emit::code::Body;
-use crate::emit::docs::{formula_doc, matrix_names};
+use crate::emit::docs::{formula_doc_with_math, matrix_names};
 use crate::emit::functions::{rows_literal, Item, Method, MethodBody, Out};
 use crate::kinematics::det::closed_form::DetModel;
 use crate::kinematics::det::gradient::DetGradient;
@@ -50,7 +50,7 @@ impl Out<'_> {
         // The lower triangle j ≤ i only: the rest is its mirror image or zero.
         let lower = |k: usize| (k / (6 * n)) <= (k % n);
         let (listed, listed_names) = self.listed(&body, &names, lower);
-        let doc = formula_doc(
+        let doc = formula_doc_with_math(
             &format!("{HESSIAN}\n\nListed: `H[j][r][i]` for j ≤ i where it is not 0."),
             &listed,
             &listed_names,
@@ -68,7 +68,7 @@ impl Out<'_> {
             let body = self.coder.body(ids);
             let names = matrix_names(short, 6, n);
             let (listed, listed_names) = self.listed(&body, &names, |_| true);
-            let doc = formula_doc(
+            let doc = formula_doc_with_math(
                 &format!("{summary}\n\nListed where not 0."),
                 &listed,
                 &listed_names,
@@ -99,7 +99,7 @@ impl Out<'_> {
         );
         let names: Vec<String> = (0..6).map(|r| format!("Jdot_qdot[{r}]")).collect();
         let (listed, listed_names) = self.listed(&body, &names, |_| true);
-        let doc = formula_doc(&summary, &listed, &listed_names);
+        let doc = formula_doc_with_math(&summary, &listed, &listed_names);
         self.formulas.add_body("jdot_qdot", &listed, &listed_names);
         self.stats.jdot_qdot = body.ops;
         let result = format!("[{}]", body.outputs.join(", "));
@@ -194,7 +194,7 @@ impl Out<'_> {
              the expanded determinant.",
             det.text
         );
-        let doc = formula_doc(&summary, &listed, &names);
+        let doc = formula_doc_with_math(&summary, &listed, &names);
         self.formulas.add_body("det_gradient", &listed, &names);
         self.stats.det_gradient = Some(body.ops);
         let result = format!("[{}]", body.outputs.join(", "));
