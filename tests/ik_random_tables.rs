@@ -517,18 +517,18 @@ fn self_test_counting(
                 // A branch through a double root is placed to within the subproblems' merge
                 // distance (2√1e-11 ≈ 6.3e-6 rad: roots closer than that are one), where an
                 // ulp of difference upstream moves it by √ε; every other branch to 1e-9.
-                let tol = if a.at_singularity || b.at_singularity {
+                let tol = if a.flags.at_singularity || b.flags.at_singularity {
                     2.0 * 1e-11_f64.sqrt()
                 } else {
                     1e-9
                 };
                 assert!(
-                    a.exact == b.exact && gap(&a.q, &b.q, &revolute) <= tol,
+                    a.flags.exact == b.flags.exact && gap(&a.q, &b.q, &revolute) <= tol,
                     "{q:?}: {a:?} vs {b:?}\n{chain}"
                 );
             }
         }
-        for b in sols.iter().filter(|b| b.exact) {
+        for b in sols.iter().filter(|b| b.flags.exact) {
             let e = error(&b.q);
             assert!(
                 e <= 1e-10,
@@ -540,7 +540,7 @@ fn self_test_counting(
         for (i, a) in sols.iter().enumerate() {
             for b in &sols[i + 1..] {
                 assert!(
-                    !(a.exact && b.exact && gap(&a.q, &b.q, &revolute) <= 1e-9),
+                    !(a.flags.exact && b.flags.exact && gap(&a.q, &b.q, &revolute) <= 1e-9),
                     "{expected}: {:?} twice for {q:?}\n{chain}",
                     a.q
                 );
@@ -548,7 +548,7 @@ fn self_test_counting(
         }
         let found = sols
             .iter()
-            .any(|b| b.exact && gap(&b.q, &q, &revolute) <= 1e-7);
+            .any(|b| b.flags.exact && gap(&b.q, &q, &revolute) <= 1e-7);
         if let (false, true, Some(misses)) = (found, singular, singular_misses.as_deref_mut()) {
             *misses += 1;
             continue;

@@ -341,7 +341,10 @@ impl Solver {
         let near_q = near.map(|q| nearest(&solutions, q, &self.revolute, &self.limits));
         let branches = solutions.to_branches();
         let residuals = misses;
-        let singular = branches.iter().map(|b| self.names(b.singular)).collect();
+        let singular = branches
+            .iter()
+            .map(|b| self.names(b.flags.singular))
+            .collect();
         let free_joint = match arm_angle {
             None => match self.plan.locked {
                 Some(k) => Some((k + 1, self.q_locked(locked, near, None)?)),
@@ -589,10 +592,10 @@ pub fn to_json(family: &str, r: &PoseResult) -> Value {
     let mut v = json!({
         "family": family,
         "solutions": r.branches.iter().map(|b| b.q.clone()).collect::<Vec<_>>(),
-        "exact": r.branches.iter().map(|b| b.exact).collect::<Vec<_>>(),
+        "exact": r.branches.iter().map(|b| b.flags.exact).collect::<Vec<_>>(),
         "singular": r.singular,
         "residual": r.residuals,
-        "within_limits": r.branches.iter().map(|b| b.within_limits).collect::<Vec<_>>(),
+        "within_limits": r.branches.iter().map(|b| b.flags.within_limits).collect::<Vec<_>>(),
     });
     if let Some(near) = &r.near {
         v["near"] = json!(near);
@@ -622,13 +625,13 @@ pub fn to_table(family: &str, r: &PoseResult) -> String {
     };
     for (i, b) in r.branches.iter().enumerate() {
         let q: Vec<String> = b.q.iter().map(|x| format!("{x:>10.6}")).collect();
-        let mut flags = vec![if b.exact { "exact" } else { "nearest" }.to_string()];
-        if !b.within_limits {
+        let mut flags = vec![if b.flags.exact { "exact" } else { "nearest" }.to_string()];
+        if !b.flags.within_limits {
             flags.push("outside limits".into());
         }
         if !r.singular[i].is_empty() {
             flags.push(format!("singular: {}", r.singular[i].join(", ")));
-        } else if b.at_singularity {
+        } else if b.flags.at_singularity {
             flags.push("singular".into());
         }
         let _ = writeln!(

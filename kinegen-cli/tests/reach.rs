@@ -147,7 +147,7 @@ fn reached_in_compiled_fk<R: Kinematics<6>>(
     let r = solver.solve(target, None, None, None).unwrap();
     r.branches
         .iter()
-        .filter(|b| b.exact && b.within_limits)
+        .filter(|b| b.flags.exact && b.flags.within_limits)
         .any(|b| {
             let q: [f64; 6] = b.q.clone().try_into().unwrap();
             let t = robot.fk(&q);

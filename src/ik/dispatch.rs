@@ -44,24 +44,16 @@ pub struct DynPlan {
     pub reversed: bool,
 }
 
-/// One solution (see [`super::IkBranch`]).
+/// One solution (see [`super::IkBranch`]): its joint values and its flags.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DynBranch {
     /// Joint values.
     pub q: Vec<f64>,
-    /// Reaches the pose.
-    pub exact: bool,
-    /// Measured `max |fk − pose|` (0 when not measured).
-    pub residual: f64,
-    /// Vanishing singular factors (bits).
-    pub singular: u32,
-    /// A subproblem met a singular configuration.
-    pub at_singularity: bool,
-    /// Within the limits.
-    pub within_limits: bool,
+    /// Exact, residual, singular factors, at a singularity, within the limits.
+    pub flags: DynFlags,
 }
 
-/// The flags of one solution in [`DynSolutions`] (those of [`DynBranch`]).
+/// The flags of one solution (in [`DynSolutions`], and of a [`DynBranch`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct DynFlags {
     /// Reaches the pose.
@@ -117,16 +109,9 @@ impl DynSolutions {
     /// The solutions as [`DynBranch`]es.
     pub fn to_branches(&self) -> Vec<DynBranch> {
         (0..self.len())
-            .map(|i| {
-                let f = self.flags[i];
-                DynBranch {
-                    q: self.q(i).to_vec(),
-                    exact: f.exact,
-                    residual: f.residual,
-                    singular: f.singular,
-                    at_singularity: f.at_singularity,
-                    within_limits: f.within_limits,
-                }
+            .map(|i| DynBranch {
+                q: self.q(i).to_vec(),
+                flags: self.flags[i],
             })
             .collect()
     }

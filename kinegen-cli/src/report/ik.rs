@@ -71,7 +71,7 @@ impl Solutions {
                     .branches
                     .iter()
                     .zip(&r.residuals)
-                    .map(|(b, res)| (b.q.clone(), *res, b.within_limits))
+                    .map(|(b, res)| (b.q.clone(), *res, b.flags.within_limits))
                     .collect();
             }
             Err(e) => out.family = Err(e.to_string()),
