@@ -16,6 +16,7 @@ import argparse
 import math
 import pathlib
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -24,15 +25,11 @@ import numpy as np
 import kinegen
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "kinegen-py" / "tests"))
+from tables import dh_table  # noqa: E402
+
 # robots/ur5.toml: (a, alpha, d) per joint, standard DH.
-UR5_DH = [
-    (0.0, math.pi / 2, 0.089159),
-    (-0.425, 0.0, 0.0),
-    (-0.39225, 0.0, 0.0),
-    (0.0, math.pi / 2, 0.10915),
-    (0.0, -math.pi / 2, 0.09465),
-    (0.0, 0.0, 0.0823),
-]
+UR5_DH = dh_table(ROOT / "robots" / "ur5.toml")
 
 
 def best(f, loops, repeats):

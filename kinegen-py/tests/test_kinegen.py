@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import kinegen
+from tables import dh_table
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ROBOTS = ROOT / "robots"
@@ -33,22 +34,8 @@ def dh_standard(a, alpha, d, theta):
 
 
 # The tables of robots/ur5.toml and robots/puma560.toml, rows (a, alpha, d), revolute.
-UR5_DH = [
-    (0.0, math.pi / 2, 0.089159),
-    (-0.425, 0.0, 0.0),
-    (-0.39225, 0.0, 0.0),
-    (0.0, math.pi / 2, 0.10915),
-    (0.0, -math.pi / 2, 0.09465),
-    (0.0, 0.0, 0.0823),
-]
-PUMA_DH = [
-    (0.0, math.pi / 2, 0.0),
-    (0.4318, 0.0, 0.0),
-    (0.0203, -math.pi / 2, 0.15005),
-    (0.0, math.pi / 2, 0.4318),
-    (0.0, -math.pi / 2, 0.0),
-    (0.0, 0.0, 0.0),
-]
+UR5_DH = dh_table(ROBOTS / "ur5.toml")
+PUMA_DH = dh_table(ROBOTS / "puma560.toml")
 
 
 def dh_fk(table, q):
