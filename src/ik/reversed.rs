@@ -13,7 +13,8 @@
 use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
 
-/// Adds to `out` the candidates of `pose` that `solve` finds on the reversed chain; `free`
+/// Adds to `out` (empty before, as the families take it) the candidates of `pose` that
+/// `solve` finds on the reversed chain; `free`
 /// is in the robot's joint order, as are the candidates added.
 ///
 /// ```
@@ -51,10 +52,12 @@ pub fn solve_reversed<const N: usize, const K: usize>(
 ) {
     let back = g.reversed();
     let free_back: [f64; N] = core::array::from_fn(|i| free[N - 1 - i]);
-    let mut found = Candidates::default();
-    solve(&back, &pose.inverse(), &free_back, &mut found);
-    for c in found.as_slice() {
-        out.push(core::array::from_fn(|i| c.q[N - 1 - i]), c.fit);
+    // Solved into `out` itself, then the new candidates' joints put back in the robot's
+    // order in place: no second set to fill and copy.
+    let before = out.as_slice().len();
+    solve(&back, &pose.inverse(), &free_back, out);
+    for c in &mut out.as_mut_slice()[before..] {
+        c.q.reverse();
     }
 }
 
