@@ -692,9 +692,72 @@ det_lu_impl!(
     libm::fabsf
 );
 
+/// `x % 2π` for `2π` = [`core::f64::consts::TAU`]: IEEE `fmod`, `x − n·TAU` with `n =
+/// trunc(x / TAU)`, exactly (the result is representable); NaN for NaN and ±∞.
+///
+/// Long division of the significands, one exponent bit a step (musl's `fmod` with the
+/// divisor fixed): a few dozen bytes, where the `%` of `core` links compiler-builtins'
+/// general `fmod` (about 4 KB on a Cortex-M: a 128-bit reduction and a division). The
+/// IK solvers' angle wrapping calls it only for angles beyond three half turns (a
+/// caller's free value), so its loop — one step per binary order of magnitude of `x`
+/// over 2π, at most about a thousand — costs nothing in the common case.
+///
+/// ```
+/// use core::f64::consts::TAU;
+/// for x in [7.0, -7.0, 1e6, -3.5e17, TAU, 2.0 * TAU] {
+///     assert_eq!(kinegen::math::rem_tau(x).to_bits(), (x % TAU).to_bits());
+/// }
+/// ```
+#[inline(never)]
+pub fn rem_tau(x: f64) -> f64 {
+    const SIGNIFICAND: u64 = (1 << 52) - 1;
+    const ONE: u64 = 1 << 52;
+    let (ux, uy) = (x.to_bits(), core::f64::consts::TAU.to_bits());
+    let sign = ux & (1 << 63);
+    let (mut ex, ey) = (((ux >> 52) & 0x7ff) as i64, ((uy >> 52) & 0x7ff) as i64);
+    if ex == 0x7ff {
+        return f64::NAN;
+    }
+    // |x| ≤ TAU: x itself, or a signed zero at |x| = TAU.
+    if ux << 1 <= uy << 1 {
+        return if ux << 1 == uy << 1 { 0.0 * x } else { x };
+    }
+    // Both are normal here (|x| > TAU).
+    let (mut mx, my) = ((ux & SIGNIFICAND) | ONE, (uy & SIGNIFICAND) | ONE);
+    while ex > ey {
+        let d = mx.wrapping_sub(my);
+        if d >> 63 == 0 {
+            if d == 0 {
+                return 0.0 * x;
+            }
+            mx = d;
+        }
+        mx <<= 1;
+        ex -= 1;
+    }
+    let d = mx.wrapping_sub(my);
+    if d >> 63 == 0 {
+        if d == 0 {
+            return 0.0 * x;
+        }
+        mx = d;
+    }
+    while mx >> 52 == 0 {
+        mx <<= 1;
+        ex -= 1;
+    }
+    let bits = if ex > 0 {
+        (mx - ONE) | ((ex as u64) << 52)
+    } else {
+        mx >> (1 - ex)
+    };
+    f64::from_bits(bits | sign)
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
+    use super::rem_tau;
     use std::vec;
 
     /// Zeros take `sin_cos_n`'s fast path (a joint at exactly 0 is common), with
@@ -767,5 +830,52 @@ mod tests {
         // scale 2e6 are not (beyond 2²⁰·π/2, or |x| > 2¹⁶·|y0| where fdlibm reduces
         // twice): 4 in 9 pairs of ordinary arguments expected fast (measured 45,056).
         assert!(fast_pairs > 40_000, "{fast_pairs} fast pairs");
+    }
+
+    /// `rem_tau` is `%` by `TAU` to the bit: random magnitudes from 2π to 2¹⁰²³, both
+    /// signs, the multiples of TAU and their neighbours, NaN and ±∞.
+    #[test]
+    fn rem_tau_is_fmod_by_tau_to_the_bit() {
+        use core::f64::consts::TAU;
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let same = |x: f64| {
+            let (a, b) = (rem_tau(x), x % TAU);
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{x:e}: {a:e} against {b:e}"
+            );
+        };
+        for _ in 0..200_000 {
+            // A random significand at a random exponent of 2π and above.
+            let exponent = 1025 + next() % 1020;
+            let bits = (exponent << 52) | (next() & ((1 << 52) - 1)) | (next() & (1 << 63));
+            same(f64::from_bits(bits));
+        }
+        for k in 1..2000u32 {
+            let m = f64::from(k) * TAU;
+            for x in [m, -m, m.next_up(), m.next_down(), -m.next_up(), 1.5 * m] {
+                same(x);
+            }
+        }
+        for x in [
+            f64::NAN,
+            f64::INFINITY,
+            -f64::INFINITY,
+            0.0,
+            -0.0,
+            3.0,
+            -TAU,
+            TAU,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+        ] {
+            same(x);
+        }
     }
 }

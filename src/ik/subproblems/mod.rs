@@ -340,8 +340,9 @@ pub fn wrap(theta: f64) -> f64 {
     if inside(t) {
         return t;
     }
-    // Further out (a caller's free value), or NaN: reduce exactly.
-    let t = theta % TAU;
+    // Further out (a caller's free value), or NaN: reduce exactly (`%` by TAU, without
+    // linking the general `fmod`).
+    let t = crate::math::rem_tau(theta);
     if t > PI {
         t - TAU
     } else if t <= -PI {
