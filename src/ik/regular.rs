@@ -8,14 +8,20 @@
 //! order, the same decisions (exact, double root, least squares), with what each level
 //! needs of its roots — their sines and cosines, which the subproblems give algebraically
 //! — for all branches at once. The angles are only printed into the solutions, so their
-//! `atan2` wait for the end: twenty-two in one pass. Almost every pose is regular; the
+//! `atan2` wait for the end: twenty-odd in one pass. Almost every pose is regular; the
 //! family's solver runs this first and, where it returns `None` (a double root, a free
 //! angle, a circle of radius zero in some lane), solves the pose branch by branch as
 //! before, with `free` values and fits. The solutions are those of the branch-by-branch
 //! solve, in the same order, to rounding (`tests/ik_regular.rs` compares them) — but for
 //! the branches whose elbow misses a pose another branch reaches by more than `FAR`
 //! (2√3 · [`NEAR_MISS`]): `finish` would check them with the robot's `fk` only to leave
-//! them out (no answer to a pose the arm reaches), so the lanes leave them out first.
+//! them out (no answer to a pose the arm reaches), so the lanes leave them out first
+//! (in the h1 ∩ h2 family, the branches whose shoulder misses: its SP2's circles apart).
+//!
+//! Here: the UR family ([`three_parallel_two_intersecting`]) and the PUMA family
+//! ([`spherical_two_parallel`]); in `regular/spherical_two_intersecting.rs` the family
+//! whose shoulder axes meet ([`spherical_two_intersecting()`]: the iiwa, and the Panda
+//! read from the tool).
 
 use super::geometry::{flat, Geometry, Orbit, Pose, M3, V3};
 use super::lanes::{Lanes, Vectors};
