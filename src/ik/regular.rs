@@ -190,6 +190,57 @@ fn direction<const L: usize>(y: Lanes<L>, x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
     (x * inv, y * inv)
 }
 
+/// A spherical orthogonal wrist (`WristPair::HalfTurn`) of four branches side by side,
+/// up to its `atan2`: q5's roots, and q4 and q6 for q5's first root, each `(y, x,
+/// exact)` — the second root's q4 and q6 are the first's turned by half turns.
+struct WristLanes {
+    /// q5's circle (its angle φ: [`Sp4Lanes::phi_sides`]).
+    circle: Sp4Lanes,
+    q5: RootLanes<4>,
+    q4: (Lanes<4>, Lanes<4>, [bool; 4]),
+    q6: (Lanes<4>, Lanes<4>, [bool; 4]),
+}
+
+/// The wrist's level: q5 — SP4: `h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6`, then q4 — SP1:
+/// `rot(h4, q4) R5 h6 = R36 h6` and q6 — SP1: `rot(h6, q6) R36ᵀ h4 = R5ᵀ h4`, from what
+/// each branch needs of `R36`: `R36 h6` in the coordinates `seen` maps a base-frame vector
+/// to (a plane's, or the base frame itself), and `R36ᵀ h4` in the base frame. `None`
+/// where q5 is not two distinct exact roots in every lane, or q4 or q6 is free in one.
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
+fn wrist(
+    [h4, h5, h6]: [V3; 3],
+    seen: impl Fn(&V3) -> V3,
+    r36_h6: &Vectors<4>,
+    r36t_h4: &Vectors<4>,
+) -> Option<WristLanes> {
+    let h4_seen = seen(&h4);
+    let circle = Sp4Lanes::new(&h4, &h6, &h5);
+    let d5 = r36_h6.dot_fixed(&h4_seen);
+    let q5 = circle.solve(d5, d5.map(f64::abs))?;
+    if q5.exact.contains(&false) {
+        return None;
+    }
+    let (c5, s5) = (q5.cos[0], q5.sin[0]);
+    let r5_h6 = Orbit::new(&seen(&h5), &seen(&h6)).at_lanes(c5, s5);
+    let q4 = sides(&r5_h6, r36_h6, &h4_seen)?;
+    let r5t_h4 = Orbit::new(&h5, &h4).at_lanes(c5, -s5);
+    let q6 = sides(r36t_h4, &r5t_h4, &h6)?;
+    Some(WristLanes { circle, q5, q4, q6 })
+}
+
+/// The two candidates of one arm branch `q123` with an orthogonal wrist: `(q4, q5⁺, q6)`
+/// and `(q4 + π, q5⁻, q6 + π)`.
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
+fn push_wrist_pair(
+    out: &mut Candidates<6, 8>,
+    [q1, q2, q3]: [f64; 3],
+    (q4, [q5_plus, q5_minus], q6): (f64, [f64; 2], f64),
+    fit: Fit,
+) {
+    out.push([q1, q2, q3, q4, q5_plus, q6], fit);
+    out.push([q1, q2, q3, wrap(q4 + PI), q5_minus, wrap(q6 + PI)], fit);
+}
+
 /// **h2 ∥ h3 ∥ h4, h5 ∩ h6** with an orthogonal wrist (`WristPair::HalfTurn`), for a
 /// regular pose: the steps of `families::three_parallel_two_intersecting`, level by level
 /// — the two shoulders (q1), then per shoulder q5's first root, θ and q6 (the second root
@@ -389,20 +440,13 @@ fn spherical_two_parallel_lanes(
     let h4_23 = h4_.mul_by(&M3::from_columns(&plane.basis()));
     let (c1, s1) = q1;
     let r36t_h4 = rotate(&h1, &h4_23, (c1.twice(), s1.twice())).tr_mul_by(&r06);
-    // q5 — SP4: h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.
-    let h4p = to_plane(&h4);
-    let wrist5 = Sp4Lanes::new(&h4, &h6, &h5);
-    let d5 = r36_h6.dot_fixed(&h4p);
-    let q5 = wrist5.solve(d5, d5.map(f64::abs))?;
-    if q5.exact.contains(&false) {
-        return None;
-    }
-    let q5_first = (q5.cos[0], q5.sin[0]);
-    // q4 — SP1: rot(h4, q4) R5 h6 = R36 h6; q6 — SP1: rot(h6, q6) R36ᵀ h4 = R5ᵀ h4.
-    let r5_h6 = turned(&plane, &h5, &h6, q5_first, 1.0);
-    let (q4_y, q4_x, q4_exact) = sides(&r5_h6, &r36_h6, &h4p)?;
-    let r5t_h4 = Orbit::new(&h5, &h4).at_lanes(q5_first.0, -q5_first.1);
-    let (q6_y, q6_x, q6_exact) = sides(&r36t_h4, &r5t_h4, &h6)?;
+    // q5, q4, q6, with R36 h6 in the plane's coordinates.
+    let WristLanes {
+        circle: wrist5,
+        q5,
+        q4: (q4_y, q4_x, q4_exact),
+        q6: (q6_y, q6_x, q6_exact),
+    } = wrist([h4, h5, h6], to_plane, &r36_h6, &r36t_h4)?;
     let exact = |j: usize| q3.exact[j / 2] && q2_exact[j] && q4_exact[j] && q6_exact[j];
     // An elbow out of reach has one branch, j = 2 i; its orientation is exact where its
     // q4 and q6 are.
@@ -436,15 +480,13 @@ fn spherical_two_parallel_lanes(
         let roots = if q3.exact[i] { 2 } else { 1 };
         for (r, q3_) in roots_of(t[18], t[i]).into_iter().take(roots).enumerate() {
             let j = 2 * i + r;
-            let [q5_plus, q5_minus] = roots_of(t[19], t[6 + j]);
-            let (q2, q4, q6) = (t[2 + j], t[10 + j], t[14 + j]);
+            let q5 = roots_of(t[19], t[6 + j]);
             let fit = if exact(j) {
                 Fit::Exact
             } else {
                 Fit::LeastSquares
             };
-            out.push([q1, q2, q3_, q4, q5_plus, q6], fit);
-            out.push([q1, q2, q3_, wrap(q4 + PI), q5_minus, wrap(q6 + PI)], fit);
+            push_wrist_pair(out, [q1, t[2 + j], q3_], (t[10 + j], q5, t[14 + j]), fit);
         }
     }
     Some(())

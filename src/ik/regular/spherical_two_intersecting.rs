@@ -4,14 +4,13 @@
 //! root), q4 and q6 (the second root by half turns). The Franka Panda (joint 7 locked)
 //! is this family read from the tool; the KUKA iiwa with joint 3 locked is it as written.
 
-use super::{direction, rotate, sides, FAR};
-use crate::ik::geometry::{meet, Geometry, Orbit, Pose, V3};
+use super::{direction, push_wrist_pair, rotate, sides, wrist, WristLanes, FAR};
+use crate::ik::geometry::{meet, Geometry, Pose, V3};
 use crate::ik::lanes::{Lanes, Vectors};
 use crate::ik::setup::wrist_centre;
 use crate::ik::solutions::Candidates;
-use crate::ik::subproblems::{roots_of, wrap, Fit, Sp2Lanes, Sp3Lanes, Sp4Lanes};
+use crate::ik::subproblems::{roots_of, Fit, Sp2Lanes, Sp3Lanes};
 use crate::math::fast_atan2_n;
-use core::f64::consts::PI;
 
 /// **Spherical wrist, h1 ∩ h2** (`WristPair::HalfTurn`), for a regular pose. The
 /// candidates go to `out` (empty before, and left untouched unless the pose is regular),
@@ -66,19 +65,13 @@ pub(super) fn spherical_two_intersecting_lanes(
     let r36_h6 = rotate(&h3, &rotate(&h2, &r1t_h6, (c2, -s2)), (c3, -s3));
     let r3_h4 = rotate(&h3, &Vectors::splat(&h4), (c3, s3));
     let r36t_h4 = rotate(&h1, &rotate(&h2, &r3_h4, (c2, s2)), (c1, s1)).tr_mul_by(&r06);
-    // q5 — SP4: h4ᵀ rot(h5, q5) h6 = h4ᵀ R36 h6.
-    let wrist5 = Sp4Lanes::new(&h4, &h6, &h5);
-    let d5 = r36_h6.dot_fixed(&h4);
-    let q5 = wrist5.solve(d5, d5.map(f64::abs))?;
-    if q5.exact.contains(&false) {
-        return None;
-    }
-    let q5_first = (q5.cos[0], q5.sin[0]);
-    // q4 — SP1: rot(h4, q4) R5 h6 = R36 h6; q6 — SP1: rot(h6, q6) R36ᵀ h4 = R5ᵀ h4.
-    let r5_h6 = Orbit::new(&h5, &h6).at_lanes(q5_first.0, q5_first.1);
-    let (q4_y, q4_x, q4_exact) = sides(&r5_h6, &r36_h6, &h4)?;
-    let r5t_h4 = Orbit::new(&h5, &h4).at_lanes(q5_first.0, -q5_first.1);
-    let (q6_y, q6_x, q6_exact) = sides(&r36t_h4, &r5t_h4, &h6)?;
+    // q5, q4, q6, all in the base frame.
+    let WristLanes {
+        circle: wrist5,
+        q5,
+        q4: (q4_y, q4_x, q4_exact),
+        q6: (q6_y, q6_x, q6_exact),
+    } = wrist([h4, h5, h6], |v| *v, &r36_h6, &r36t_h4)?;
     let exact = |j: usize| shoulder.exact[j / 2] && q4_exact[j] && q6_exact[j];
     // A shoulder that misses has one branch, j = 2 i; its orientation is exact where its
     // q4 and q6 are, and its position misses by |R1ᵀ d − R2 arm|.
@@ -114,15 +107,13 @@ pub(super) fn spherical_two_intersecting_lanes(
             if far[j] {
                 continue;
             }
-            let [q5_plus, q5_minus] = roots_of(t[22], t[8 + j]);
-            let (q1, q2, q4, q6) = (t[j], t[4 + j], t[12 + j], t[16 + j]);
+            let q5 = roots_of(t[22], t[8 + j]);
             let fit = if exact(j) {
                 Fit::Exact
             } else {
                 Fit::LeastSquares
             };
-            out.push([q1, q2, q3, q4, q5_plus, q6], fit);
-            out.push([q1, q2, q3, wrap(q4 + PI), q5_minus, wrap(q6 + PI)], fit);
+            push_wrist_pair(out, [t[j], t[4 + j], q3], (t[12 + j], q5, t[16 + j]), fit);
         }
     }
     Some(())
