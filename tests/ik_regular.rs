@@ -1,7 +1,9 @@
 //! The regular-pose solvers in lanes (`kinegen::ik::regular`) against the branch-by-branch
 //! solvers of their families, which `ik` falls back to: on the robots of `robots/` in the
-//! two families and on random variations of the UR5 and the PUMA 560 (link lengths of
-//! either sign, base and tool frames), with random configurations (fixed seeds), 20 % of
+//! three families (the UR, the PUMA, and h1 ∩ h2: the iiwa with joint 3 locked and the
+//! Panda with joint 7 locked, read from the tool) and on random variations of the UR5, the
+//! PUMA 560 and the Panda (link lengths of either sign, base and tool frames), with random
+//! configurations (fixed seeds), 20 % of
 //! the joints snapped to −π/2, 0 or π/2 (singular poses, which the lanes must hand back),
 //! and every fifth pose moved 0.3 m (branches out of reach: least-squares lanes).
 //!
@@ -188,8 +190,9 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
 /// The robots of `robots/` in one family, each with its own seed. Each family has robots
 /// with poses some branches reach and others do not (a UR's elbow target depends on the
 /// wrist's branch; the KR 6 and the IRB 140 have a shoulder offset — not the PUMA 560,
-/// whose offset d3 runs along the parallel axes, nor the IRB 120): the lanes must leave
-/// out some branches.
+/// whose offset d3 runs along the parallel axes, nor the IRB 120; the Panda's shoulder,
+/// read from the tool, misses where its SP2's circles do — not the iiwa's): the lanes must
+/// leave out some branches.
 fn robots(robots: &[(&str, Geometry<6>)], solvers: (Lanes, ByBranch), seed: u64) {
     let mut left_out = 0;
     for (k, (name, g)) in robots.iter().enumerate() {

@@ -54,6 +54,8 @@ pub(super) fn spherical_two_intersecting_lanes(
     // has one least-squares point.
     let arm = rotate(&h3, &Vectors::splat(&p3w), (c3, s3)) + Vectors::splat(&p23);
     let shoulder = Sp2Lanes::<2, 4>::solve(&d, &arm, &(-h1), &h2)?;
+    // (The SP1s' own fits are not used: a least-squares meeting point lies off both
+    // circles, which SP2's fit says already — as in `sp2`.)
     let (q1_y, q1_x, _) = sides(&Vectors::splat(&d), &shoulder.z, &(-h1))?;
     let arm4 = arm.twice::<4>();
     let (q2_y, q2_x, _) = sides(&arm4, &shoulder.z, &h2)?;
