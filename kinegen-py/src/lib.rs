@@ -963,33 +963,33 @@ impl Solved {
         Ok(out)
     }
 
-    /// Room for `m` poses of `k` places.
-    fn reserve(&mut self, m: usize) {
-        let places = m * self.k;
-        self.q.reserve(places * self.n);
-        for v in [
+    /// The four masks, one entry per place.
+    fn masks(&mut self) -> [&mut Vec<bool>; 4] {
+        [
             &mut self.valid,
             &mut self.exact,
             &mut self.singular,
             &mut self.within_limits,
-        ] {
+        ]
+    }
+
+    /// Room for `m` poses of `k` places.
+    fn reserve(&mut self, m: usize) {
+        let places = m * self.k;
+        self.q.reserve(places * self.n);
+        self.residual.reserve(places);
+        for v in self.masks() {
             v.reserve(places);
         }
-        self.residual.reserve(places);
     }
 
     /// `count` unused places.
     fn pad(&mut self, count: usize) {
         self.q.resize(self.q.len() + count * self.n, f64::NAN);
-        for v in [
-            &mut self.valid,
-            &mut self.exact,
-            &mut self.singular,
-            &mut self.within_limits,
-        ] {
+        self.residual.resize(self.residual.len() + count, f64::NAN);
+        for v in self.masks() {
             v.resize(v.len() + count, false);
         }
-        self.residual.resize(self.residual.len() + count, f64::NAN);
     }
 
     /// The `m` poses written so far re-laid with `k` places each (`k` > `self.k`).
@@ -1007,15 +1007,10 @@ impl Solved {
         }
         let (n, old) = (self.n, self.k);
         respace(&mut self.q, m, old * n, k * n, f64::NAN);
-        for v in [
-            &mut self.valid,
-            &mut self.exact,
-            &mut self.singular,
-            &mut self.within_limits,
-        ] {
+        respace(&mut self.residual, m, old, k, f64::NAN);
+        for v in self.masks() {
             respace(v, m, old, k, false);
         }
-        respace(&mut self.residual, m, old, k, f64::NAN);
         self.k = k;
     }
 }
