@@ -14,8 +14,8 @@ use super::geometry::{Geometry, Pose};
 use super::solutions::Candidates;
 
 /// Adds to `out` (empty before, as the families take it) the candidates of `pose` that
-/// `solve` finds on the reversed chain; `free`
-/// is in the robot's joint order, as are the candidates added.
+/// `solve` finds on the reversed chain; `free` is in the robot's joint order, as are the
+/// candidates added.
 ///
 /// ```
 /// use kinegen::ik::geometry::{Geometry, V3, M3};
