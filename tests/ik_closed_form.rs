@@ -979,3 +979,55 @@ fn the_free_joint_is_the_default_rule_or_the_users_choice() {
         Panda::IK_FAMILY
     );
 }
+
+/// The reversed chain derived at expansion time (`ik_geometry_reversed`, in exact
+/// arithmetic) is the run time's `Geometry::reversed` of `ik_geometry`, to rounding: the
+/// same axes, the same points up to a shift along their axis, the same tool.
+#[test]
+fn the_reversed_geometry_is_derived_at_expansion_time() {
+    use kinegen::ik::geometry::Geometry;
+    fn same(name: &str, derived: Geometry<7>, at_run_time: Geometry<7>) {
+        // Lengths of about a metre: 1e-15 relative is a few roundings.
+        let tol = 1e-14;
+        for i in 0..7 {
+            let (h, h_) = (derived.h[i], at_run_time.h[i]);
+            assert!((h - h_).norm() < tol, "{name}: axis {i}: {h:?} {h_:?}");
+            // Points on one line: their difference is along the axis.
+            let d = derived.p[i] - at_run_time.p[i];
+            assert!(h.cross(&d).norm() < tol, "{name}: point {i}: {d:?}");
+            assert_eq!(derived.prismatic[i], at_run_time.prismatic[i]);
+        }
+        assert!(
+            (derived.r_tool - at_run_time.r_tool).norm() < tol,
+            "{name}: tool"
+        );
+        assert!(
+            (derived.p_tool - at_run_time.p_tool).norm() < tol,
+            "{name}: tool"
+        );
+    }
+    same(
+        "Panda",
+        Panda::default().ik_geometry_reversed(),
+        Panda::default().ik_geometry().reversed(),
+    );
+    same(
+        "Panda URDF",
+        PandaUrdf::default().ik_geometry_reversed(),
+        PandaUrdf::default().ik_geometry().reversed(),
+    );
+    for (name, derived, at_run_time) in [
+        (
+            "Panda, joint 4 free",
+            PandaJoint4::default().ik_geometry_reversed(),
+            PandaJoint4::default().ik_geometry().reversed(),
+        ),
+        (
+            "Panda, joint 5 free",
+            PandaJoint5::default().ik_geometry_reversed(),
+            PandaJoint5::default().ik_geometry().reversed(),
+        ),
+    ] {
+        same(name, derived, at_run_time);
+    }
+}

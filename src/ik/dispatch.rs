@@ -211,7 +211,13 @@ fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<
     };
     let mut out = Candidates::default();
     if plan.reversed {
-        solve_reversed(g, pose, free, |g, p, f, o| solver(g, p, f, w, o), &mut out);
+        solve_reversed(
+            &g.reversed(),
+            pose,
+            free,
+            |g, p, f, o| solver(g, p, f, w, o),
+            &mut out,
+        );
     } else {
         solver(g, pose, free, w, &mut out);
     }

@@ -284,6 +284,60 @@ impl<const N: usize> Geometry<N> {
         }
         g
     }
+
+    /// The `N − 1`-joint problem with joint `k` locked at `q_k`: its geometry and the pose
+    /// its joints must reach. The first joint's motion moves the pose instead of the
+    /// geometry — `T = e^{ξ1 q1} T'(q2 … qN)`, so the others reach `e^{−ξ1 q1} T` on the
+    /// geometry as it is, one pose turned where [`Geometry::lock`] turns every axis, point
+    /// and the tool after the joint; any other joint is locked by [`Geometry::lock`] and
+    /// the pose kept. `M` must be `N − 1`.
+    ///
+    /// ```
+    /// use kinegen::ik::geometry::{Geometry, V3, M3};
+    /// let g = Geometry::<3> {
+    ///     h: [V3::z(), V3::y(), V3::y()],
+    ///     p: [V3::zeros(), V3::new(0.0, 0.0, 0.3), V3::new(0.4, 0.0, 0.3)],
+    ///     prismatic: [false; 3],
+    ///     r_tool: M3::identity(),
+    ///     p_tool: V3::new(0.7, 0.0, 0.3),
+    /// };
+    /// let q = [0.4, -0.3, 0.9];
+    /// let (rest, target) = g.lock_at_pose::<2>(0, q[0], &g.fk(&q));
+    /// let reached = rest.fk(&[q[1], q[2]]);
+    /// assert!((reached.p - target.p).norm() < 1e-15 && (reached.r - target.r).norm() < 1e-15);
+    /// ```
+    pub fn lock_at_pose<const M: usize>(
+        &self,
+        k: usize,
+        q_k: f64,
+        pose: &Pose,
+    ) -> (Geometry<M>, Pose) {
+        debug_assert!(M + 1 == N && k < N);
+        if k != 0 {
+            return (self.lock(k, q_k), *pose);
+        }
+        let (h, p0) = (self.h[0], self.p[0]);
+        let target = if self.prismatic[0] {
+            Pose {
+                r: pose.r,
+                p: pose.p - h * q_k,
+            }
+        } else {
+            let undo = rot(&h, -q_k);
+            Pose {
+                r: undo * pose.r,
+                p: p0 + undo * (pose.p - p0),
+            }
+        };
+        let rest = Geometry {
+            h: core::array::from_fn(|j| self.h[j + 1]),
+            p: core::array::from_fn(|j| self.p[j + 1]),
+            prismatic: core::array::from_fn(|j| self.prismatic[j + 1]),
+            r_tool: self.r_tool,
+            p_tool: self.p_tool,
+        };
+        (rest, target)
+    }
 }
 
 /// Lines closer to parallel than this (`|u × v|²`) have no intersection point to move to.

@@ -8,6 +8,7 @@
 //! the residual on the geometry's product of exponentials and the singular factors in
 //! f64), and the solutions are rounded once (`IkSolutions::to_f32`).
 
+use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::emit::code::{Body, Coder};
 use crate::emit::item::{Const, Item, Method, MethodBody};
@@ -155,6 +156,9 @@ pub fn items(chain: &Chain, model: &IkModel, singular: SingularCheck) -> (Vec<It
         }
     }
     items.push(Item::Method(geometry(chain, model)));
+    if let Some(ids) = &model.reversed_ids {
+        items.push(Item::Method(reversed_geometry(chain, model, ids)));
+    }
     items.push(Item::Const(Const {
         doc: "Which joints are revolute (their values wrap by whole turns).".into(),
         name: "REVOLUTE",
@@ -363,7 +367,12 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     lets.extend([
         target_line(chain.scalar).to_string(),
         "if !target.is_finite() || free.iter().any(|x| !x.is_finite()) { return ::kinegen::ik::IkSolutions::empty(); }".into(),
-        "let g = self.ik_geometry();".into(),
+        if model.plan.reversed {
+            // Read backwards at expansion time: `ik` does not invert the geometry.
+            "let g = self.ik_geometry_reversed();".into()
+        } else {
+            "let g = self.ik_geometry();".into()
+        },
     ]);
     if *family == Family::General6r {
         // Which of the elimination's forms is regular for this arm, found on the first call.
@@ -375,27 +384,27 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     // The solver fills the candidates in place: returned by value they were copied once
     // more (about 450 bytes) on every call.
     let reversed = model.plan.reversed;
-    let call = |g: &str, free: &str, out: &str| {
-        let (g_, target, free_, out_) = if reversed {
+    let call = |g: &str, target: &str, free: &str, out: &str, locked: Option<usize>| {
+        let (g_, target_, free_, out_) = if reversed {
             ("g", "t", "f", "o")
         } else {
-            (g, "&target", free, out)
+            (g, target, free, out)
         };
         let args = match family {
             Family::Planar {
                 revolute,
                 prismatic,
-            } => format!("&{g_}, {target}, &{revolute:?}, {prismatic:?}, {free_}"),
+            } => format!("&{g_}, {target_}, &{revolute:?}, {prismatic:?}, {free_}"),
             Family::Position(Position::OneRevolute { revolute_first }) => {
-                format!("&{g_}, {target}, {revolute_first}, {free_}")
+                format!("&{g_}, {target_}, {revolute_first}, {free_}")
             }
             Family::CartesianYaw { revolute } => {
-                format!("&{g_}, {target}, {revolute}, {free_}")
+                format!("&{g_}, {target_}, {revolute}, {free_}")
             }
             Family::Position(_) | Family::PitchRoll { .. } => {
-                format!("&{g_}, {target}, {free_}")
+                format!("&{g_}, {target_}, {free_}")
             }
-            Family::General6r => format!("&{g_}, {target}, {free_}, &HINT"),
+            Family::General6r => format!("&{g_}, {target_}, {free_}, &HINT"),
             _ => {
                 let pair = if model.plan.wrist_half_turn {
                     "HalfTurn"
@@ -403,17 +412,23 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
                     "Solve"
                 };
                 format!(
-                    "{}{g_}, {target}, {free_}, ::kinegen::ik::families::WristPair::{pair}",
+                    "{}{g_}, {target_}, {free_}, ::kinegen::ik::families::WristPair::{pair}",
                     if reversed { "" } else { "&" }
                 )
             }
         };
         let solve = if reversed {
-            // Read from the tool to the base: the inverted pose on the reversed geometry,
-            // the joints put back in the robot's order.
-            format!(
-                "::kinegen::ik::reversed::solve_reversed(&{g}, &target, {free}, |g, t, f, o| {solver}({args}, o), &mut {out});"
-            )
+            // Read from the tool to the base: the inverted pose on the reversed geometry
+            // (`g`), the joints put back in the robot's order; a locked joint locked on it.
+            let closure = format!("|g, t, f, o| {solver}({args}, o)");
+            match locked {
+                None => format!(
+                    "::kinegen::ik::reversed::solve_reversed(&{g}, {target}, {free}, {closure}, &mut {out});"
+                ),
+                Some(k) => format!(
+                    "::kinegen::ik::reversed::solve_reversed_locked(&{g}, {target}, {k}, q_locked, {free}, {closure}, &mut {out});"
+                ),
+            }
         } else {
             format!("{solver}({args}, &mut {out_});")
         };
@@ -421,7 +436,7 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
     };
     let (args, doc) = match locked {
         None => {
-            lets.push(call("g", "free", "candidates"));
+            lets.push(call("g", "&target", "free", "candidates", None));
             (
                 format!("pose: &[[{f}; 4]; 4], free: &[{f}; {n}]"),
                 "Every solution of `pose`, with `free` giving the joints a singular pose leaves \
@@ -437,14 +452,19 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
                 lets.push("let q_locked = f64::from(q_locked);".into());
             }
             lets.push(format!(
-                "let g6: ::kinegen::ik::geometry::Geometry<{}> = g.lock({k}, q_locked);",
-                n - 1
-            ));
-            lets.push(format!(
                 "let free6: [f64; {}] = ::kinegen::ik::solutions::without(free, {k});",
                 n - 1
             ));
-            lets.push(call("g6", "&free6", "c6"));
+            if reversed {
+                lets.push(call("g", "&target", "&free6", "c6", Some(k)));
+            } else {
+                // The first joint locked moves the target, any other the geometry.
+                lets.push(format!(
+                    "let (g6, target6) = g.lock_at_pose::<{}>({k}, q_locked, &target);",
+                    n - 1
+                ));
+                lets.push(call("g6", "&target6", "&free6", "c6", None));
+            }
             lets.push(format!(
                 "let candidates = ::kinegen::ik::solutions::with_locked::<{}, {n}, {}>(&c6, {k}, q_locked);",
                 n - 1,
@@ -479,10 +499,52 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
 
 /// `ik_geometry`: the axes, points and tool at `q = 0`, from the parameters.
 fn geometry(chain: &Chain, model: &IkModel) -> Method {
+    geometry_method(
+        chain,
+        model,
+        &model.ids,
+        false,
+        "ik_geometry",
+        "The joint axes `h`, a point `p` on each, and the tool pose at `q = 0`, in the base \
+         frame, from this robot's parameters: the product-of-exponentials geometry the \
+         closed-form solver reads."
+            .into(),
+    )
+}
+
+/// `ik_geometry_reversed`, for a plan read from the tool to the base: that chain's
+/// geometry, derived at expansion time (see [`IkModel::reversed_ids`]).
+fn reversed_geometry(chain: &Chain, model: &IkModel, ids: &[Id]) -> Method {
+    geometry_method(
+        chain,
+        model,
+        ids,
+        true,
+        "ik_geometry_reversed",
+        "The same arm read from the tool to the base, as the closed-form solver takes it: \
+         joint `i` is joint `N + 1 − i` of [`Self::ik_geometry`] (1-based), its axis reversed and \
+         seen from the tool at `q = 0`, and the base frame as the tool. Its forward kinematics \
+         at the joints in reverse order is the inverse of the robot's pose; it equals \
+         `self.ik_geometry().reversed()`, derived here at expansion time so that `ik` does \
+         not invert the geometry on every call."
+            .into(),
+    )
+}
+
+/// A method returning the geometry whose nodes are `ids` (in [`IkModel::ids`]' order),
+/// with the joints' kinds in reverse order if `reversed`.
+fn geometry_method(
+    chain: &Chain,
+    model: &IkModel,
+    ids: &[Id],
+    reversed: bool,
+    name: &'static str,
+    doc: String,
+) -> Method {
     let n = chain.dof();
     // f64 code for every robot (an f32 robot's parameters widened): the solver's input.
     let coder = Coder::new(chain, &model.zero).in_f64();
-    let body = coder.body(&model.ids);
+    let body = coder.body(ids);
     let o = &body.outputs;
     let v3 = |x: &[String]| {
         format!(
@@ -493,25 +555,27 @@ fn geometry(chain: &Chain, model: &IkModel) -> Method {
     let h: Vec<String> = (0..n).map(|i| v3(&o[6 * i..6 * i + 3])).collect();
     let p: Vec<String> = (0..n).map(|i| v3(&o[6 * i + 3..6 * i + 6])).collect();
     let r = &o[6 * n..6 * n + 9];
+    let mut prismatic = joint_flags(chain, JointKind::Prismatic);
+    if reversed {
+        prismatic.reverse();
+    }
     let result = format!(
         "::kinegen::ik::geometry::Geometry {{ h: [{}], p: [{}], prismatic: [{}], r_tool: ::kinegen::ik::geometry::M3::new({}), p_tool: {} }}",
         h.join(", "),
         p.join(", "),
-        joints_are(chain, JointKind::Prismatic),
+        prismatic.join(", "),
         r.join(", "),
         v3(&o[6 * n + 9..6 * n + 12])
     );
     Method {
         doc: format!(
-            "The joint axes `h`, a point `p` on each, and the tool pose at `q = 0`, in the base \
-             frame, from this robot's parameters: the product-of-exponentials geometry the \
-             closed-form solver reads.{}",
+            "{doc}{}",
             match chain.scalar {
                 Scalar::F64 => "",
                 Scalar::F32 => " In f64, from the widened f32 parameters: the solve runs in f64.",
             }
         ),
-        name: "ik_geometry",
+        name,
         rates: false,
         ret: format!("::kinegen::ik::geometry::Geometry<{n}>"),
         body: MethodBody::Custom {
@@ -524,9 +588,13 @@ fn geometry(chain: &Chain, model: &IkModel) -> Method {
 
 /// `true, false, …`: which joints are of `kind`, as a Rust array's elements.
 fn joints_are(chain: &Chain, kind: JointKind) -> String {
-    let flags: Vec<&str> = chain
+    joint_flags(chain, kind).join(", ")
+}
+
+/// `"true"` or `"false"` per joint: whether it is of `kind`.
+fn joint_flags(chain: &Chain, kind: JointKind) -> Vec<&'static str> {
+    chain
         .kinds()
         .map(|k| if k == kind { "true" } else { "false" })
-        .collect();
-    flags.join(", ")
+        .collect()
 }

@@ -49,6 +49,7 @@ pub struct SymbolicChain {
     /// replays from a link frame.
     links: Vec<LinkSteps>,
     tool_steps: Vec<Step>,
+    base_steps: Vec<Step>,
 }
 
 /// The chain seen from one link frame: every joint's axis and a point on it, every link
@@ -228,8 +229,8 @@ impl SymbolicChain {
         graph.deadline = deadline;
         let mut b = Entries::new(graph);
         let mut t = Transform::identity(&mut b.graph);
-        let steps = fixed(&mut b, &chain.base);
-        t = apply_all(&mut b.graph, t, &steps);
+        let base_steps = fixed(&mut b, &chain.base);
+        t = apply_all(&mut b.graph, t, &base_steps);
         let base = t;
         let pivot_at = pivot.filter(|&k| k >= 1 && k < chain.dof());
         let mut frames = Vec::new();
@@ -292,6 +293,7 @@ impl SymbolicChain {
             tool_axes,
             links: link_steps,
             tool_steps: steps,
+            base_steps,
         };
         (sym, pivot)
     }
@@ -334,6 +336,22 @@ impl SymbolicChain {
             origins,
             tool,
         }
+    }
+
+    /// The world frame seen from the tool, `(base · A1 ⋯ AN · tool)⁻¹`: every step walked
+    /// back from the tool, so its entries are exact forms as small as the steps make them
+    /// (inverting the built `tool` would multiply whole-chain polynomials). With
+    /// [`SymbolicChain::tool_axes`] it is the chain read from the tool to the base.
+    pub fn world_from_tool(&mut self) -> Transform {
+        let g = &mut self.graph;
+        let mut u = Transform::identity(g);
+        u = back(g, u, &self.tool_steps);
+        for l in self.links.iter().rev() {
+            u = back(g, u, &l.after);
+            u = back(g, u, core::slice::from_ref(&l.motion));
+            u = back(g, u, &l.before);
+        }
+        back(g, u, &self.base_steps)
     }
 
     /// The joint rates `q̇_1 … q̇_N` as leaves (`qd1`, …), made on first use.

@@ -152,7 +152,8 @@ fn one_tier(axes: &Axes, kinds: &[JointKind], labels: &[usize], six: Six) -> Res
             let names: Vec<String> = back.iter().map(|i| (i + 1).to_string()).collect();
             let mut all = vec![format!(
                 "read from the tool: the chain inverted — joints {} in that order, target T⁻¹ = (R06ᵀ, −R06ᵀ p0T), \
-                 axes and points seen from the tool at q = 0 — is the family below; its joint values are the robot's",
+                 axes and points seen from the tool at q = 0 (derived at expansion time: `ik_geometry_reversed`) — is the \
+                 family below; its joint values are the robot's",
                 names.join(", ")
             )];
             all.extend(steps);

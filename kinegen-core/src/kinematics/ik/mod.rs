@@ -11,6 +11,7 @@ pub mod plan;
 use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
+use crate::kinematics::transform::Transform;
 use family::{plan, IkPlan};
 
 /// What the generated `ik` needs: the plan and the geometry's nodes.
@@ -23,6 +24,10 @@ pub struct IkModel {
     /// Per joint: axis (3 nodes) then point (3 nodes); then the tool's rotation
     /// (row-major, 9) and position (3).
     pub ids: Vec<Id>,
+    /// For a plan read from the tool to the base: the same, of the chain read backwards
+    /// (joint `i` is joint `N − 1 − i`; its axis negated and seen from the tool at `q = 0`,
+    /// the world frame as its tool), so the run time does not invert the geometry.
+    pub reversed_ids: Option<Vec<Id>>,
 }
 
 /// The IK model of `chain`, or why it has none (naming the axes that break each
@@ -30,17 +35,40 @@ pub struct IkModel {
 /// user chose it (`ik_free`).
 pub fn model(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkModel, String> {
     let plan = plan(chain, max_terms, free)?;
-    let zero = SymbolicChain::at_zero(chain, max_terms, None);
+    let mut zero = SymbolicChain::at_zero(chain, max_terms, None);
+    let ids = geometry_ids(&zero.axes, &zero.tool);
+    let reversed_ids = plan.reversed.then(|| {
+        let world = zero.world_from_tool();
+        let g = &mut zero.graph;
+        let axes: Vec<([Id; 3], [Id; 3])> = zero
+            .tool_axes
+            .iter()
+            .rev()
+            .map(|(h, p)| (h.map(|x| g.neg(x)), *p))
+            .collect();
+        geometry_ids(&axes, &world)
+    });
+    Ok(IkModel {
+        plan,
+        zero,
+        ids,
+        reversed_ids,
+    })
+}
+
+/// Per joint its axis then its point, then the tool's rotation (row-major) and position:
+/// the order of [`IkModel::ids`].
+fn geometry_ids(axes: &[([Id; 3], [Id; 3])], tool: &Transform) -> Vec<Id> {
     let mut ids = Vec::new();
-    for (h, p) in &zero.axes {
+    for (h, p) in axes {
         ids.extend(h);
         ids.extend(p);
     }
-    for row in zero.tool.rows() {
+    for row in tool.rows() {
         ids.extend(&row[..3]);
     }
-    ids.extend(zero.tool.p);
-    Ok(IkModel { plan, zero, ids })
+    ids.extend(tool.p);
+    ids
 }
 
 /// The zero-configuration geometry as numbers, with the chain's parameter values.
