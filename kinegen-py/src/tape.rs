@@ -4,7 +4,7 @@
 //! whole graph on each call: right for one evaluation, costly for a batch).
 //!
 //! Sines and cosines come from `kinegen::math::sin_cos_n`, as in the generated code; a
-//! batch runs four joint vectors side by side ([`Program::eval_lanes`]), each with the
+//! batch runs [`LANES`] joint vectors side by side ([`Program::eval_lanes`]), each with the
 //! bits a single call gives it.
 
 use kinegen_core::algebra::graph::Id;
