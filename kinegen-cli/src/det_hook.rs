@@ -3,6 +3,7 @@
 //! Jacobian's, or why there is none.
 
 use kinegen_core::algebra::graph::Id;
+use kinegen_core::kinematics::det::meaning::meaning;
 use kinegen_core::kinematics::det::structural::square_rows;
 use kinegen_core::{Chain, Derived};
 
@@ -30,6 +31,10 @@ pub struct Factor {
     pub power: u32,
     /// Joints it depends on (1-based).
     pub joints: Vec<usize>,
+    /// What its zero set is on the arm: the relations of the axes that hold there and
+    /// the joints that can then move without moving the tool
+    /// ([`kinegen_core::kinematics::det::meaning`]).
+    pub meaning: String,
 }
 
 /// The determinants of a robot, where the engine has them.
@@ -66,6 +71,7 @@ pub fn determinants(chain: &Chain, derived: &Derived) -> Determinants {
                         latex: f.latex.clone(),
                         power: f.power,
                         joints: f.joints.clone(),
+                        meaning: meaning(chain, &derived.model.sym, &d.rows, f),
                     })
                     .collect(),
             };

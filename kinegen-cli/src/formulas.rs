@@ -154,30 +154,26 @@ pub fn sections(chain: &Chain, model: &Model, dets: &Determinants, what: What) -
                 let entries = d
                     .factors
                     .iter()
-                    .map(|f| {
-                        let joints: Vec<String> =
-                            f.joints.iter().map(|j| format!("q{j}")).collect();
-                        Line {
-                            text_lhs: f.text.clone(),
-                            latex_lhs: f.latex.clone(),
-                            meaning: Some((
-                                format!(
-                                    "0   ({}{})",
-                                    if joints.is_empty() {
-                                        "a link parameter: singular for every q".to_string()
-                                    } else {
-                                        format!("depends on {}", joints.join(", "))
-                                    },
-                                    if f.power > 1 {
-                                        format!("; power {}", f.power)
-                                    } else {
-                                        String::new()
-                                    }
-                                ),
-                                "0".into(),
-                            )),
-                            rust: None,
-                        }
+                    .map(|f| Line {
+                        text_lhs: f.text.clone(),
+                        latex_lhs: f.latex.clone(),
+                        meaning: Some((
+                            format!(
+                                "0   ({}{})",
+                                if f.joints.is_empty() {
+                                    "a link parameter: singular for every q".to_string()
+                                } else {
+                                    f.meaning.clone()
+                                },
+                                if f.power > 1 {
+                                    format!("; power {}", f.power)
+                                } else {
+                                    String::new()
+                                }
+                            ),
+                            "0".into(),
+                        )),
+                        rust: None,
                     })
                     .collect();
                 sections.push(Section {

@@ -29,6 +29,7 @@ fn a_determinant_from_the_hook_is_shown_evaluated_and_counted() {
                 latex: r"s_{2}".into(),
                 power: 1,
                 joints: vec![2],
+                meaning: "axes 1, 2 and 3 are parallel and in one plane".into(),
             }],
         }),
         missing: "not available".into(),

@@ -821,7 +821,7 @@ impl Robot {
             let eq = mathml::math(&mathml::equation(&page::lhs(name), &[rhs]), true);
             s.push_str(&html::equation(&eq, &format!("{name} = {}", d.text)));
         }
-        s.push_str(&page::singular_factors(&i.chain, &i.dets).body);
+        s.push_str(&page::singular_factors(&i.dets).body);
         s.push_str("</div>\n");
         s
     }

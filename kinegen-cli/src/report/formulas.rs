@@ -51,7 +51,7 @@ pub fn first_order(chain: &Chain, derived: &Derived, dets: &Determinants) -> Sec
 
 /// Where det J vanishes: each factor `= 0` with the joints it involves and what that
 /// kind of factor means.
-pub fn singular_factors(chain: &Chain, dets: &Determinants) -> Section {
+pub fn singular_factors(dets: &Determinants) -> Section {
     let mut body = String::new();
     let list = [("det J", &dets.det), ("det Jt", &dets.det_task)];
     let mut any = false;
@@ -71,7 +71,7 @@ pub fn singular_factors(chain: &Chain, dets: &Determinants) -> Section {
             };
             body.push_str(&html::equation(
                 &eq,
-                &format!("{} = 0{power}: {}", f.text, meaning(chain, f)),
+                &format!("{} = 0{power}: {}", f.text, meaning(f)),
             ));
         }
     }
@@ -85,28 +85,14 @@ pub fn singular_factors(chain: &Chain, dets: &Determinants) -> Section {
     }
 }
 
-/// What a factor's zero set is, read from the joints it involves (the usual names of
-/// a 6R arm's singularities): a constant (the robot's lengths: never zero here, or det
-/// J would vanish everywhere), the last three joints only (wrist), joint 3 alone
-/// (elbow), joint 2 or 3 with others (shoulder).
-pub fn meaning(chain: &Chain, f: &Factor) -> String {
-    let n = chain.dof();
+/// What a factor's zero set is: the joints it involves, then what happens on the arm
+/// there, found on the arm's geometry ([`Factor::meaning`]).
+pub fn meaning(f: &Factor) -> String {
+    if f.joints.is_empty() {
+        return f.meaning.clone();
+    }
     let joints: Vec<String> = f.joints.iter().map(|j| format!("q{j}")).collect();
-    let kind = if f.joints.is_empty() {
-        return "a constant of the robot's lengths, not zero for this robot (else det J would \
-                vanish at every q); zero only for a robot with that length 0"
-            .into();
-    } else if n >= 6 && f.joints.iter().all(|&j| j + 3 > n) {
-        "wrist singularity: the wrist's axes line up and it loses a rotation"
-    } else if f.joints.len() == 1 && f.joints[0] == 3 {
-        "elbow singularity: the arm stretched out or folded back"
-    } else if f.joints.iter().any(|&j| j == 2 || j == 3) {
-        "shoulder singularity (it involves the arm's position joints): the point the arm \
-         positions meets an axis of the shoulder and cannot be moved in every direction"
-    } else {
-        "joints of the arm and the wrist together"
-    };
-    format!("depends on {}; {kind}", joints.join(", "))
+    format!("depends on {}; {}", joints.join(", "), f.meaning)
 }
 
 /// The second order, each as the generated method computes it (its non-zero entries,
@@ -237,7 +223,7 @@ mod tests {
         assert_eq!(lhs("c23"), "<msub><mi>c</mi><mn>23</mn></msub>");
     }
 
-    /// The UR5's factors read as the textbook names them.
+    /// The UR5's factors read as what happens on the arm.
     #[test]
     fn ur5_factors_are_named() {
         let (chain, options) =
@@ -249,13 +235,25 @@ mod tests {
             .unwrap()
             .factors
             .iter()
-            .map(|f| (f.text.clone(), meaning(&chain, f)))
+            .map(|f| (f.text.clone(), meaning(f)))
             .collect();
         let of = |t: &str| &named.iter().find(|(x, _)| x == t).unwrap().1;
-        assert!(of("sin(q3)").contains("elbow"), "{named:?}");
-        assert!(of("sin(q5)").contains("wrist"), "{named:?}");
+        assert!(
+            of("sin(q3)")
+                .starts_with("depends on q3; axes 2, 3 and 4 are parallel and in one plane"),
+            "{named:?}"
+        );
+        assert!(
+            of("sin(q5)").starts_with("depends on q5; axes 2, 3, 4 and 6 are parallel"),
+            "{named:?}"
+        );
         assert!(of("a2").contains("constant"), "{named:?}");
         let shoulder = named.iter().find(|(t, _)| t.contains("d5")).unwrap();
-        assert!(shoulder.1.contains("shoulder"), "{named:?}");
+        assert!(
+            shoulder
+                .1
+                .contains("the point where axes 5 and 6 meet lies in the plane through axis 1"),
+            "{named:?}"
+        );
     }
 }

@@ -50,7 +50,7 @@ pub fn page(
     let mut sections = vec![
         robot::section(chain),
         formulas::first_order(chain, derived, dets),
-        formulas::singular_factors(chain, dets),
+        formulas::singular_factors(dets),
         singularity_map::section(chain, derived, dets, &solutions),
         ik::section(chain, derived, &solutions),
         stick_figures::section(chain, &solutions),
