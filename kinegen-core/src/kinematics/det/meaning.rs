@@ -209,6 +209,10 @@ impl Arm {
             for s in 1..=SAMPLES {
                 let b = lo + step * s as f64;
                 let fb = at(b);
+                if !(fa.is_finite() && fb.is_finite()) {
+                    (a, fa) = (b, fb);
+                    continue;
+                }
                 if fa == 0.0 || fa.signum() != fb.signum() {
                     let (mut a, mut b, mut fa) = (a, b, fa);
                     for _ in 0..80 {
@@ -250,8 +254,15 @@ impl Arm {
                 j[(r, i)] = col[row];
             }
         }
-        // The null vector of JᵀJ (N × N): its eigenvector of the smallest eigenvalue.
-        let e = (j.transpose() * &j).symmetric_eigen();
+        if j.iter().any(|x| !x.is_finite()) {
+            return Vec::new();
+        }
+        // The null vector of JᵀJ (N × N): its eigenvector of the smallest eigenvalue
+        // (iterations bounded: no input makes this spin).
+        let Some(e) = nalgebra::SymmetricEigen::try_new(j.transpose() * &j, f64::EPSILON, 1000)
+        else {
+            return Vec::new();
+        };
         let Some((k, _)) = e
             .eigenvalues
             .iter()
