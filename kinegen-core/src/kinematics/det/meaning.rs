@@ -57,9 +57,10 @@ pub fn meaning(chain: &Chain, sym: &SymbolicChain, rows: &[usize], factor: &DetF
         })
         .collect();
     let Some((first, _)) = found.first() else {
+        let joints: Vec<String> = factor.joints.iter().map(|j| format!("q{j}")).collect();
         return format!(
-            "depends on {}; no zero found moving one of its joints from two generic configurations",
-            joint_list(&factor.joints)
+            "no zero found moving one of {} from two generic configurations",
+            joints.join(", ")
         );
     };
     let events: Vec<&String> = first
@@ -78,17 +79,19 @@ pub fn meaning(chain: &Chain, sym: &SymbolicChain, rows: &[usize], factor: &DetF
         "the tool"
     };
     let still = match joints.as_slice() {
+        [] => String::new(),
         [j] => format!("joint {j} can then move without moving {tool}"),
         _ => format!(
             "joints {} can then move together without moving {tool}",
             joint_list(&joints)
         ),
     };
-    if events.is_empty() {
-        still
-    } else {
-        let events: Vec<&str> = events.iter().map(|e| e.as_str()).collect();
-        format!("{}: {still}", events.join("; "))
+    let events: Vec<&str> = events.iter().map(|e| e.as_str()).collect();
+    match (events.is_empty(), still.is_empty()) {
+        (true, true) => "no relation of the axes and no null motion found there".into(),
+        (false, true) => events.join("; "),
+        (true, false) => still,
+        (false, false) => format!("{}: {still}", events.join("; ")),
     }
 }
 
