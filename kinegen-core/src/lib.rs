@@ -11,6 +11,7 @@
 //! - [`simplify`]: evaluation order, e-graph polish, sign moves — each rewrite checked.
 //! - [`emit`]: Rust, rustdoc, `FORMULAS`, LaTeX — printing only.
 //! - [`numeric`]: an independent numeric reference for the tests.
+//! - [`words`]: several names in one sentence, for messages and notes.
 //!
 //! [`generate()`] runs them; the `kinematics!` macro and the `kinegen` CLI are thin
 //! callers of it.
@@ -24,6 +25,7 @@ pub mod kinematics;
 pub mod model;
 pub mod numeric;
 pub mod simplify;
+pub mod words;
 
 pub use chain::Chain;
 pub use emit::functions::Stats;

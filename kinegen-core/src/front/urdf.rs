@@ -454,10 +454,7 @@ impl Urdf {
 /// `` `a`, `b` and `c` ``.
 fn quoted(names: &[&str]) -> String {
     let q: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
-    match q.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
-        _ => q.join(""),
-    }
+    crate::words::and_list(&q)
 }
 
 /// The namespace of the `<robot>` element (elements in it are URDF's).

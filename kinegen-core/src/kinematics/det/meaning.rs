@@ -20,6 +20,7 @@ use crate::chain::Chain;
 use crate::kinematics::frames::SymbolicChain;
 use crate::kinematics::program::Program;
 use crate::model::robot::JointKind;
+use crate::words::and_list;
 use core::f64::consts::PI;
 use nalgebra::{DMatrix, Vector3};
 
@@ -98,10 +99,7 @@ pub fn meaning(chain: &Chain, sym: &SymbolicChain, rows: &[usize], factor: &DetF
 /// `1, 2 and 3`.
 fn joint_list(joints: &[usize]) -> String {
     let names: Vec<String> = joints.iter().map(|j| j.to_string()).collect();
-    match names.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
-        _ => names.join(""),
-    }
+    and_list(&names)
 }
 
 /// A configuration in no special position: each joint at its own irrational-looking
@@ -133,7 +131,6 @@ struct Frames {
     h: Vec<V3>,
     p: Vec<V3>,
     tool: V3,
-    prismatic: Vec<bool>,
     /// The arm's size, for distances.
     size: f64,
 }
@@ -184,7 +181,6 @@ impl Arm {
             h: (0..n).map(|i| v3(6 * i).normalize()).collect(),
             p,
             tool,
-            prismatic: self.prismatic.clone(),
             size,
         }
     }
@@ -247,7 +243,7 @@ impl Arm {
         let n = f.h.len();
         let mut j = DMatrix::zeros(rows.len(), n);
         for i in 0..n {
-            let (v, w) = if f.prismatic[i] {
+            let (v, w) = if self.prismatic[i] {
                 (f.h[i], V3::zeros())
             } else {
                 (f.h[i].cross(&(f.tool - f.p[i])), f.h[i])
