@@ -724,7 +724,8 @@ pub fn rem_tau(x: f64) -> f64 {
     }
     // Both are normal here (|x| > TAU).
     let (mut mx, my) = ((ux & SIGNIFICAND) | ONE, (uy & SIGNIFICAND) | ONE);
-    while ex > ey {
+    // One step of the division per exponent bit, down to the divisor's exponent.
+    loop {
         let d = mx.wrapping_sub(my);
         if d >> 63 == 0 {
             if d == 0 {
@@ -732,15 +733,11 @@ pub fn rem_tau(x: f64) -> f64 {
             }
             mx = d;
         }
+        if ex == ey {
+            break;
+        }
         mx <<= 1;
         ex -= 1;
-    }
-    let d = mx.wrapping_sub(my);
-    if d >> 63 == 0 {
-        if d == 0 {
-            return 0.0 * x;
-        }
-        mx = d;
     }
     while mx >> 52 == 0 {
         mx <<= 1;
