@@ -208,8 +208,10 @@ pub fn general_6r<const K: usize>(
 fn one_per_self_motion(g: &Geometry<6>, pose: &Pose, here: &[f64; 6], found: &mut Found) {
     let all = *found;
     let items = all.as_slice();
+    // A `Checked` branch was found regular (`solve_with` measured its Hadamard ratio).
     let singular: [bool; FOUND] = core::array::from_fn(|i| {
         i < items.len()
+            && items[i].fit != Fit::Checked
             && reaches(g, &items[i].q, pose)
             && hadamard_ratio(g, &items[i].q) < NEAR_SINGULAR
     });
