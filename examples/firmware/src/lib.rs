@@ -30,7 +30,7 @@ pub const CONFIGS: [[f64; 6]; 5] = [
 
 /// Joint configurations (rad) of the Kinova Jaco (no joint limits) whose poses the
 /// firmware solves with the general 6R `ik` (Raghavan–Roth's elimination, a 24 × 24
-/// eigenproblem): regular configurations, the generating one among the solutions.
+/// eigenproblem deflated to 16 × 16): regular configurations, the generating one among the solutions.
 pub const JACO_CONFIGS: [[f64; 6]; 3] = [
     // Arbitrary; the check asks for the generating configuration among the solutions.
     [0.3, 2.9, 1.2, -0.8, 1.9, 0.4],

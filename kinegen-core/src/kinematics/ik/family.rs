@@ -573,7 +573,7 @@ fn steps_general(j: impl Fn(usize) -> usize) -> Vec<String> {
             .to_string(),
         "the two-joint side's eight products eliminated (Householder reflections of their 14 × 8 matrix): six equations in three joints; with x = tan(q/2) (offset) and the six multiplied by x of the second, twelve equations linear in twelve monomials: (A x² + B x + C) v = 0 in the outer joint's x"
             .to_string(),
-        "x — the real eigenvalues of the 24 × 24 companion matrix (Francis's double-shift QR on its Hessenberg form, eigenvalues only, bounded sweeps; of the better-conditioned end, x or 1/x): at most 16 real solutions"
+        "x — the real eigenvalues of the 24 × 24 companion matrix (of the better-conditioned end, x or 1/x): its eight at x = ±i (the determinant's factor (1 + x²)⁴) taken out by an orthogonal similarity read off the six equations at x = i and checked, then Francis's double-shift QR on the 16 × 16 matrix left (Hessenberg form, eigenvalues only, bounded sweeps): at most 16 real solutions"
             .to_string(),
         "the three-joint side's inner joints from the null vector v (ratios of neighbouring monomials); the two-joint side's from the triangular factor of the elimination; the carried joint by SP1 on the rotation"
             .to_string(),

@@ -5,7 +5,7 @@
 //! eigen joint's half-angle tangent ([`System`]).
 
 use super::formulation::{joint, Formulation, Link};
-use crate::ik::geometry::{Geometry, Pose, V3};
+use crate::ik::geometry::{orthogonal, Geometry, Pose, V3};
 use crate::math::{abs, sin_cos, sqrt};
 use nalgebra::SMatrix;
 
@@ -91,6 +91,10 @@ pub(super) struct System {
     /// `1 / x`): the companion matrix's lower blocks, negated.
     pub(super) companion: (SMatrix<f64, 12, 12>, SMatrix<f64, 12, 12>),
     pub(super) inverted: bool,
+    /// Where the six equations stand at `x = i` (`spurious.rs`): `spurious[e][2 v]` and
+    /// `[2 v + 1]`, the real and imaginary parts of the coefficient of vector quantity `v`'s
+    /// component across the eigen axis in equation `e`.
+    pub(super) spurious: [[f64; 8]; LEFT],
     /// The smallest over the largest pivot of the companion's lead matrix: how far the
     /// pencil is from singular.
     pub(super) ratio: f64,
@@ -193,7 +197,20 @@ impl System {
                 products[e][m] = -right[e][m + 1];
             }
         }
-        let r = eliminate(&mut products, &mut left)?;
+        // At x = i (a root of the half-angle's 1 + x²) a vector quantity's two turned
+        // parts add up to a multiple of one complex vector `u + i he × u` across the
+        // axis, and its invariant part is gone: `spurious.rs` reads the eight roots there
+        // off these four columns, reflected with the rest.
+        let (u, v) = (orthogonal(&he), he.cross(&orthogonal(&he)));
+        let mut at_i = [[0.0; EQS]; 8];
+        for (k, &row) in VECTORS.iter().enumerate() {
+            for d in 0..3 {
+                at_i[2 * k][row + d] = u[d];
+                at_i[2 * k + 1][row + d] = v[d];
+            }
+        }
+        let r = eliminate(&mut products, &mut left, &mut at_i)?;
+        let spurious = core::array::from_fn(|e| core::array::from_fn(|m| at_i[m][8 + e]));
         let pencil = pencil(&left);
         // The companion of the better-conditioned end: x or 1/x (a root near x = ∞);
         // both singular, the pencil is (every x a root: a degenerate formulation).
@@ -216,6 +233,7 @@ impl System {
             pencil,
             companion,
             inverted,
+            spurious,
             ratio: ra.max(rc),
             joints: [
                 je,
@@ -245,11 +263,12 @@ fn pivot_ratio(lu: &nalgebra::FullPivLU<f64, nalgebra::Const<12>, nalgebra::Cons
 }
 
 /// Step 2: Householder reflections that make the eight products' coefficients upper
-/// triangular, applied to the left side too; the triangular factor, or `None` when a
-/// pivot vanishes (rank below 8).
+/// triangular, applied to the left side and to the `columns` too; the triangular factor,
+/// or `None` when a pivot vanishes (rank below 8).
 fn eliminate(
     products: &mut [[f64; 8]; EQS],
     left: &mut [[[f64; 9]; EQS]; 3],
+    columns: &mut [[f64; EQS]; 8],
 ) -> Option<[[f64; 8]; 8]> {
     let scale = products
         .iter()
@@ -301,6 +320,9 @@ fn eliminate(
                     row[m] = xi;
                 }
             }
+        }
+        for x in columns.iter_mut() {
+            reflect(x);
         }
     }
     let mut r = [[0.0; 8]; 8];

@@ -24,8 +24,11 @@
 //! 3. with `x = tan(q/2)` those are polynomials of degree 2 in each of x3, x4, x5;
 //!    multiplied by x4 they give twelve equations linear in the twelve monomials
 //!    `x4^i x5^j` (i ≤ 3, j ≤ 2): `(A x3² + B x3 + C) v = 0`, a quadratic eigenproblem;
-//! 4. its 24 eigenvalues (a 24 × 24 companion matrix, Francis's QR: `eigenvalues.rs`)
-//!    are x3's candidates — at most 16 real solutions, the other roots complex;
+//! 4. its 24 eigenvalues (a 24 × 24 companion matrix) are x3's candidates: eight of
+//!    them are always `±i` (the determinant's factor `(1 + x²)⁴`), taken out first by an
+//!    orthogonal similarity read off the equations at `x = i` (`spurious.rs`); the
+//!    other sixteen by Francis's QR on the 16 × 16 matrix left (`eigenvalues.rs`) — at
+//!    most 16 real solutions, the other roots complex;
 //! 5. for each real x3 the null vector `v` of the 12 × 12 matrix gives x4, x5; the eight
 //!    products give q1, q2 (the triangular factor of step 2); q6 by SP1;
 //! 6. each branch is polished by Newton steps on `fk` and checked there
@@ -57,6 +60,7 @@ mod eigenvalues;
 mod elimination;
 mod formulation;
 mod roots;
+mod spurious;
 
 use crate::ik::geometry::{orthogonal, rot, Geometry, Pose, M3, V3};
 use crate::ik::polish::{hadamard_ratio, polish};

@@ -5,6 +5,7 @@
 
 use super::eigenvalues::eigenvalues;
 use super::elimination::{System, OFFSETS};
+use super::spurious::deflated;
 use crate::ik::subproblems::wrap;
 use crate::math::{abs, atan2, sin_cos, sqrt};
 use nalgebra::{SMatrix, SVector};
@@ -20,27 +21,33 @@ const NEAR_REAL: f64 = 1e-3;
 /// eigenvalue converge; far more means an input it does not converge on (no solutions
 /// then, never a hang).
 const SWEEPS: usize = 30 * 24;
+/// The same for the 16 × 16 matrix left when the spurious eight are taken out.
+const SWEEPS_DEFLATED: usize = 30 * 16;
 
 impl System {
     /// The real eigenvalues of the pencil (step 4), and the complex ones within
     /// [`NEAR_REAL`] of the real line, into `roots`, each with its imaginary part relative
     /// to its size; how many.
     pub(super) fn real_roots(&self, roots: &mut [(f64, f64); 24]) -> usize {
-        let (u, w) = &self.companion;
-        // The companion matrix [[0, I], [−U, −W]] of the pencil (or of its reverse).
-        let mut companion = [[0.0; 24]; 24];
-        for i in 0..12 {
-            companion[i][12 + i] = 1.0;
-            for j in 0..12 {
-                companion[12 + i][j] = -u[(i, j)];
-                companion[12 + i][12 + j] = -w[(i, j)];
-            }
-        }
-        let Some(values) = eigenvalues(&mut companion, SWEEPS) else {
+        let mut companion = self.companion_matrix();
+        // The eight eigenvalues every pencil has at x = ±i taken out first where they
+        // can be (`spurious.rs`), else all 24 (of the matrix it left similar).
+        let mut values = [(0.0, 0.0); 24];
+        let count = match deflated(&mut companion, self) {
+            Some(mut other) => eigenvalues(&mut other, SWEEPS_DEFLATED).map(|v| {
+                values[..16].copy_from_slice(&v);
+                16
+            }),
+            None => eigenvalues(&mut companion, SWEEPS).map(|v| {
+                values = v;
+                24
+            }),
+        };
+        let Some(count) = count else {
             return 0;
         };
         let mut n = 0;
-        for (re, im) in values {
+        for &(re, im) in &values[..count] {
             let size = sqrt(re * re + im * im);
             // Real to rounding of the eigenvalue's size, or near it: a double real root (a
             // singular pose) splits into a pair ~√ε apart, farther where the pencil is
@@ -55,6 +62,20 @@ impl System {
             }
         }
         n
+    }
+
+    /// The companion matrix `[[0, I], [−U, −W]]` of the pencil (or of its reverse).
+    pub(super) fn companion_matrix(&self) -> [[f64; 24]; 24] {
+        let (u, w) = &self.companion;
+        let mut companion = [[0.0; 24]; 24];
+        for i in 0..12 {
+            companion[i][12 + i] = 1.0;
+            for j in 0..12 {
+                companion[12 + i][j] = -u[(i, j)];
+                companion[12 + i][12 + j] = -w[(i, j)];
+            }
+        }
+        companion
     }
 
     /// Step 5: the five joints other than the eliminated one for the root `x` (the
