@@ -58,18 +58,27 @@ fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
             continue;
         }
         let beta = 2.0 / vtv;
-        // From the left: rows k+1.., columns k...
-        for j in k..N {
-            let s: f64 = (k + 1..N).map(|i| v[i] * a[i][j]).sum::<f64>() * beta;
-            for i in k + 1..N {
-                a[i][j] -= s * v[i];
+        // From the left: rows k+1.., columns k..; `s = β vᵀ a` gathered row by row, so
+        // that both loops run along rows.
+        let mut s = [0.0; N];
+        for (vi, row) in v[k + 1..].iter().zip(&a[k + 1..]) {
+            for (sj, x) in s[k..].iter_mut().zip(&row[k..]) {
+                *sj += vi * x;
+            }
+        }
+        for (vi, row) in v[k + 1..].iter().zip(&mut a[k + 1..]) {
+            let f = beta * vi;
+            for (x, sj) in row[k..].iter_mut().zip(&s[k..]) {
+                *x -= f * sj;
             }
         }
         // From the right: every row, columns k+1...
+        let v = &v[k + 1..];
         for row in a.iter_mut() {
-            let s: f64 = (k + 1..N).map(|j| row[j] * v[j]).sum::<f64>() * beta;
-            for j in k + 1..N {
-                row[j] -= s * v[j];
+            let row = &mut row[k + 1..];
+            let s: f64 = row.iter().zip(v).map(|(x, vj)| x * vj).sum::<f64>() * beta;
+            for (x, vj) in row.iter_mut().zip(v) {
+                *x -= s * vj;
             }
         }
         a[k + 1][k] = alpha * scale;
@@ -223,25 +232,43 @@ fn sweep<const N: usize>(a: &mut [[f64; N]; N], l: usize, n: usize, x: f64, y: f
         p += s;
         let (x, y, z) = (p / s, q / s, r / s);
         let (q, r) = (q / p, r / p);
-        // From the left: rows k..k+2, columns k..=n.
-        for j in k..=n {
-            let mut t = a[k][j] + q * a[k + 1][j];
-            if !last {
-                t += r * a[k + 2][j];
-                a[k + 2][j] -= t * z;
+        // From the left: rows k..k+2, columns k..=n (the last step: two rows).
+        let (top, below) = a.split_at_mut(k + 1);
+        let r0 = &mut top[k][k..=n];
+        if last {
+            let r1 = &mut below[0][k..=n];
+            for (a0, a1) in r0.iter_mut().zip(r1.iter_mut()) {
+                let t = *a0 + q * *a1;
+                *a1 -= t * y;
+                *a0 -= t * x;
             }
-            a[k + 1][j] -= t * y;
-            a[k][j] -= t * x;
+        } else {
+            let (r1, r2) = below.split_at_mut(1);
+            let (r1, r2) = (&mut r1[0][k..=n], &mut r2[0][k..=n]);
+            for ((a0, a1), a2) in r0.iter_mut().zip(r1.iter_mut()).zip(r2.iter_mut()) {
+                let t = *a0 + q * *a1 + r * *a2;
+                *a2 -= t * z;
+                *a1 -= t * y;
+                *a0 -= t * x;
+            }
         }
         // From the right: rows l..=min(n, k+3), columns k..k+2.
-        for row in a.iter_mut().take(n.min(k + 3) + 1).skip(l) {
-            let mut t = x * row[k] + y * row[k + 1];
-            if !last {
-                t += z * row[k + 2];
-                row[k + 2] -= t * r;
+        let rows = &mut a[l..=n.min(k + 3)];
+        if last {
+            for row in rows {
+                let c = &mut row[k..k + 2];
+                let t = x * c[0] + y * c[1];
+                c[1] -= t * q;
+                c[0] -= t;
             }
-            row[k + 1] -= t * q;
-            row[k] -= t;
+        } else {
+            for row in rows {
+                let c = &mut row[k..k + 3];
+                let t = x * c[0] + y * c[1] + z * c[2];
+                c[2] -= t * r;
+                c[1] -= t * q;
+                c[0] -= t;
+            }
         }
     }
 }
