@@ -553,6 +553,39 @@ pub fn orthonormalized(pose: &Pose) -> Pose {
     Pose { r, p: pose.p }
 }
 
+/// The pose an f64 robot's `Check::residual` measures a branch at: the generated `fk`
+/// (`generated`), or with the `small-ik` feature the product of exponentials of its IK
+/// geometry (`poe`) — the same pose to rounding, read by the runtime's one `Geometry::fk`
+/// instead of a second copy of the generated `fk` inlined into every `ik` (about 5 KB of
+/// soft-float code on a Cortex-M4F; examples/firmware/README.md).
+///
+/// ```
+/// use kinegen::ik::geometry::{Geometry, M3, V3};
+/// use kinegen::ik::solutions::{checked_pose, residual};
+/// let g = Geometry {
+///     h: [V3::z()],
+///     p: [V3::zeros()],
+///     prismatic: [false],
+///     r_tool: M3::identity(),
+///     p_tool: V3::new(1.0, 0.0, 0.0),
+/// };
+/// let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+/// let fk = [[c, -s, 0.0, c], [s, c, 0.0, s], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]];
+/// let t = checked_pose(|| fk, || g.fk(&[0.3]));
+/// assert!(residual(&t, &g.fk(&[0.3])) < 1e-15);
+/// ```
+#[inline(always)]
+pub fn checked_pose(
+    generated: impl FnOnce() -> [[f64; 4]; 4],
+    poe: impl FnOnce() -> Pose,
+) -> [[f64; 4]; 4] {
+    if cfg!(feature = "small-ik") {
+        pose_matrix(&poe())
+    } else {
+        generated()
+    }
+}
+
 /// `pose` as a row-major homogeneous transform (bottom row `0 0 0 1`): what [`residual`]
 /// and [`task_residual`] read, for a pose from [`Geometry::fk`](super::geometry::Geometry::fk).
 pub fn pose_matrix(pose: &Pose) -> [[f64; 4]; 4] {

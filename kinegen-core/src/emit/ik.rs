@@ -37,7 +37,7 @@ pub struct CheckImpl {
     /// The joint a 7-joint arm's closed form locks.
     pub locked: Option<usize>,
     /// The robot's scalar: an f32 robot's residual is measured on `ik_geometry().fk`
-    /// in f64 instead of its f32 `fk`.
+    /// in f64 instead of its f32 `fk` (an f64 robot's too with kinegen's `small-ik`).
     pub scalar: Scalar,
 }
 

@@ -187,8 +187,12 @@ fn traits(chain: &Chain, ident: &str, functions: &Functions) -> String {
 fn check_impl(chain: &Chain, ident: &str, check: &CheckImpl) -> String {
     let n = chain.dof();
     // An f32 robot's solve is checked in f64: on the geometry's product of exponentials.
+    // So is an f64 robot's with kinegen's `small-ik` (`checked_pose`: the runtime's one
+    // product of exponentials instead of a second copy of `fk` inlined into `ik`).
     let fk = match check.scalar {
-        Scalar::F64 => "self.fk(q)",
+        Scalar::F64 => {
+            "::kinegen::ik::solutions::checked_pose(|| self.fk(q), || self.ik_geometry().fk(q))"
+        }
         Scalar::F32 => "::kinegen::ik::solutions::pose_matrix(&self.ik_geometry().fk(q))",
     };
     let residual = match &check.task_rows {
