@@ -372,7 +372,7 @@ fn along(h: &[[f64; 3]; 3], t: &[[[f64; 3]; 3]; 3], axis: usize) -> [[[f64; 3]; 
     for (a, plane) in out.iter_mut().enumerate() {
         for (b, row) in plane.iter_mut().enumerate() {
             for (c, x) in row.iter_mut().enumerate() {
-                // Written out per axis: a generic index juggling cost 40 times the sums.
+                // Written out per axis: a generic index juggling cost about nine times as much.
                 *x = match axis {
                     0 => h[a][0] * t[0][b][c] + h[a][1] * t[1][b][c] + h[a][2] * t[2][b][c],
                     1 => h[b][0] * t[a][0][c] + h[b][1] * t[a][1][c] + h[b][2] * t[a][2][c],

@@ -1,8 +1,9 @@
 //! Step 4's eight spurious eigenvalues — `x = ±i`, four times each — taken out before the
 //! QR: the 24 × 24 companion matrix becomes a 16 × 16 one with the other eigenvalues, the
 //! sixteen a general 6R can have. (Raghavan and Roth: the pencil's determinant, of degree
-//! 24, has the factor `(1 + x²)⁴`.) Francis's QR costs the cube of the size: a third of
-//! the work.
+//! 24, has the factor `(1 + x²)⁴`.) Francis's QR's work grows with the cube of the size;
+//! measured on the Jaco, 345 k instructions for the 24 × 24 against 177 k for the 16 × 16
+//! plus 94 k for taking the eight out.
 //!
 //! Where they come from: at `x = i` the half-angle's `1 + x²` vanishes, so each equation
 //! loses the part that does not turn with the eigen joint, and each vector quantity `w`
@@ -87,7 +88,7 @@ impl<const N: usize> Reflection<N> {
 const RANK: f64 = 1e-8;
 
 /// The upper right block of `Hᵀ L H` must be below this relative to `L`'s largest entry
-/// (rounding: ~1e-15; the Jaco's and the CRX's poses measured ≤ 1e-12).
+/// (rounding: measured at most 1.5e-15 over the 20 180 systems of the Jaco's bench poses).
 const DEFLATED: f64 = 1e-10;
 
 /// The companion matrix `l` of `sys` with its eight eigenvalues at `x = ±i` taken out:
