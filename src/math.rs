@@ -526,9 +526,14 @@ const ATAN_POLY: [f64; 11] = [
 /// within 1.3 ulp of glibc's `atan2` over 2 million pairs (`tests/math_atan2.rs`), about
 /// twice as fast.
 /// Zeros, infinities and NaN go to the full `atan2`, so their signed results are
-/// IEEE's.
+/// IEEE's. With the `small-ik` feature it is the full `atan2` for every input: the
+/// special cases keep that one in the image anyway, and a second arctangent costs
+/// 1.1 KB of a Cortex-M4F's flash.
 #[inline]
 pub fn fast_atan2(y: f64, x: f64) -> f64 {
+    if cfg!(feature = "small-ik") {
+        return atan2(y, x);
+    }
     let (n, d, swap, special) = atan2_octant(y, x);
     if special {
         return atan2(y, x);
@@ -551,12 +556,19 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
 pub fn fast_atan2_n<const L: usize>(y: [f64; L], x: [f64; L]) -> [f64; L] {
     let mut r = [0.0; L];
     // Lanes pay off with vector registers for f64; elsewhere (a Cortex-M's soft-float
-    // doubles) they would only copy the polynomial into every caller: one call per lane.
-    #[cfg(not(any(target_arch = "x86_64", target_arch = "aarch64")))]
+    // doubles) they would only copy the polynomial into every caller: one call per lane
+    // (and with `small-ik`, where `fast_atan2` is the full `atan2`).
+    #[cfg(any(
+        feature = "small-ik",
+        not(any(target_arch = "x86_64", target_arch = "aarch64"))
+    ))]
     for i in 0..L {
         r[i] = fast_atan2(y[i], x[i]);
     }
-    #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
+    #[cfg(all(
+        not(feature = "small-ik"),
+        any(target_arch = "x86_64", target_arch = "aarch64")
+    ))]
     {
         for i in 0..L {
             let (n, d, swap, _) = atan2_octant(y[i], x[i]);

@@ -95,8 +95,17 @@ pub fn rot_sc(k: &V3, s: f64, c: f64) -> M3 {
 /// The rotation by `theta` about the unit axis `k`.
 #[inline]
 pub fn rot(k: &V3, theta: f64) -> M3 {
-    let (s, c) = sin_cos(theta);
-    rot_sc(k, s, c)
+    // Size first, through `Angle::new`: one copy of the inlined `sin_cos` for both (the
+    // same bits).
+    #[cfg(feature = "small-ik")]
+    {
+        Angle::new(theta).rot(k)
+    }
+    #[cfg(not(feature = "small-ik"))]
+    {
+        let (s, c) = sin_cos(theta);
+        rot_sc(k, s, c)
+    }
 }
 
 /// An angle with its sine and cosine. The subproblems find the sine and cosine of their
@@ -114,6 +123,7 @@ pub struct Angle {
 
 impl Angle {
     /// `theta`, with its sine and cosine evaluated.
+    #[cfg_attr(feature = "small-ik", inline(never))]
     pub fn new(theta: f64) -> Angle {
         let (sin, cos) = sin_cos(theta);
         Angle { theta, sin, cos }
