@@ -73,6 +73,22 @@ impl Pose {
     }
 }
 
+/// `m v`, as the operator computes it. With the `small-ik` feature one out-of-line copy
+/// of its nine products and six sums (on a Cortex-M each a soft-float call) serves every
+/// caller; else it is the operator, inlined.
+#[cfg_attr(feature = "small-ik", inline(never))]
+#[cfg_attr(not(feature = "small-ik"), inline(always))]
+pub(crate) fn mv(m: &M3, v: &V3) -> V3 {
+    m * v
+}
+
+/// `a bᵀ`, as the operators compute it (out of line with `small-ik`, as [`mv`]).
+#[cfg_attr(feature = "small-ik", inline(never))]
+#[cfg_attr(not(feature = "small-ik"), inline(always))]
+pub(crate) fn m_mt(a: &M3, b: &M3) -> M3 {
+    a * b.transpose()
+}
+
 /// The rotation about the unit axis `k` whose angle has sine `s` and cosine `c`
 /// (Rodrigues: `c I + s [k]× + (1 − c) k kᵀ`).
 #[inline]
@@ -370,8 +386,9 @@ pub(crate) fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
     }
 }
 
-/// The part of `v` orthogonal to the unit `k`.
-#[inline]
+/// The part of `v` orthogonal to the unit `k` (out of line with `small-ik`, as [`mv`]).
+#[cfg_attr(feature = "small-ik", inline(never))]
+#[cfg_attr(not(feature = "small-ik"), inline)]
 pub(crate) fn flat(k: &V3, v: &V3) -> V3 {
     v - k * k.dot(v)
 }

@@ -5,7 +5,7 @@
 //! [`regular::three_parallel_two_intersecting`] first.
 
 use super::{regular_first, Solvers, WristPair};
-use crate::ik::geometry::{flat, rot, Angle, Geometry, Pose, M3, V3};
+use crate::ik::geometry::{flat, mv, rot, Angle, Geometry, Pose, M3, V3};
 use crate::ik::regular;
 use crate::ik::setup::ThreeParallel;
 use crate::ik::solutions::Candidates;
@@ -61,7 +61,7 @@ pub fn three_parallel_two_intersecting_by_branch(
     // The circles cut once per branch: h2ᵀ rot(h5, q5) h6 (step 3), and the elbow's with
     // θ known (step 5, in the plane ⟂ h2).
     let wrist5 = Sp4::new(&h2, &h6, &h5);
-    let (r06_h5, r06_h6) = (r06 * h5, r06 * h6);
+    let (r06_h5, r06_h6) = (mv(&r06, &h5), mv(&r06, &h6));
     let elbow = Sp3::new(&flat(&h2, &p34), &flat(&h2, &(-p23)), &h3);
     // The arm's plane ⟂ h2: turns about h2 ∥ h3 ∥ h4 are 2-D rotations there.
     let plane = Plane::new(&h2);
@@ -69,8 +69,8 @@ pub fn three_parallel_two_intersecting_by_branch(
     for q1 in t1.as_slice() {
         let r1t = q1.rot(&h1).transpose();
         // R1ᵀ R06 h5, R1ᵀ R06 h6: all the wrist needs of the target's rotation.
-        let (target_h5, target_h6) = (r1t * r06_h5, r1t * r06_h6);
-        let arm = r1t * p16 - p12;
+        let (target_h5, target_h6) = (mv(&r1t, &r06_h5), mv(&r1t, &r06_h6));
+        let arm = mv(&r1t, &p16) - p12;
         let arm_ = plane.split(&arm);
         let t5 = wrist5.solve(h2.dot(&target_h6), free[4]);
         // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
@@ -79,7 +79,7 @@ pub fn three_parallel_two_intersecting_by_branch(
             // q6 — SP1: R6 h5 = (R14 R5)ᵀ R1ᵀ R06 h5 with R14 = rot(h2, θ): with θ known,
             // one per (q1, q5), whichever elbow.
             let q6_for = |r5: &M3, r14: &M3| {
-                let x = r5.transpose() * (r14.transpose() * target_h5);
+                let x = mv(&r5.transpose(), &mv(&r14.transpose(), &target_h5));
                 sp1(&h5, &x, &h6, free[5])
             };
             let (mode, ft) = match (k, turned) {
@@ -101,14 +101,14 @@ pub fn three_parallel_two_intersecting_by_branch(
                         t,
                         q6: q6_for(&r5, &t.rot(&h2)),
                     };
-                    let (theta, ft) = sp1_angle(&(r5 * h6), &target_h6, &h2, 0.0);
+                    let (theta, ft) = sp1_angle(&mv(&r5, &h6), &target_h6, &h2, 0.0);
                     // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist
                     // singularity q4 = free — or, when that q4 puts the wrist out of the
                     // elbow's reach, θ chosen mid-range of what the elbow can reach,
                     // nearest to free's.
                     let mode = if ft == Fit::Free {
                         let q4 = free[3];
-                        let known = p34 + rot(&h4, q4) * p45;
+                        let known = p34 + mv(&rot(&h4, q4), &p45);
                         let t = sp3(
                             &flat(&h2, &known),
                             &flat(&h2, &(-p23)),
@@ -168,7 +168,7 @@ pub fn three_parallel_two_intersecting_by_branch(
                         free[2],
                     );
                     for q3 in t3.as_slice() {
-                        let (q2, f2) = sp1(&(p23 + q3.rot(&h3) * known), &arm, &h2, free[1]);
+                        let (q2, f2) = sp1(&(p23 + mv(&q3.rot(&h3), &known)), &arm, &h2, free[1]);
                         let (q6, f6) = q6_for(&r5, &rot(&h2, q2 + s3 * q3.theta + s4 * q4));
                         out.push(
                             [q1.theta, q2, q3.theta, q4, q5.theta, q6],

@@ -18,6 +18,11 @@ use crate::math::{fast_atan2 as atan2, fast_atan2_n, sqrt};
 /// their component along `k`; free (`free` returned) when `p1` or `p2` lies on the axis.
 #[inline]
 pub fn sp1(p1: &V3, p2: &V3, k: &V3, free: f64) -> (f64, Fit) {
+    // Size first: one SP1 in the image, [`sp1_angle`]'s (the same angle, bit for bit).
+    if cfg!(feature = "small-ik") {
+        let (angle, fit) = sp1_angle(p1, p2, k, free);
+        return (angle.theta, fit);
+    }
     sp1_from_sides(sp1_sides(p1, p2, k), free)
 }
 
@@ -33,7 +38,8 @@ pub fn sp1_from_sides(sides: Option<(f64, f64, Fit)>, free: f64) -> (f64, Fit) {
 
 /// [`sp1`] with the sine and cosine of the angle (from the same products, no `sin`/`cos`
 /// call unless the angle is free).
-#[inline]
+#[cfg_attr(not(feature = "small-ik"), inline)]
+#[cfg_attr(feature = "small-ik", inline(never))]
 pub fn sp1_angle(p1: &V3, p2: &V3, k: &V3, free: f64) -> (Angle, Fit) {
     match sp1_sides(p1, p2, k) {
         Some((y, x, fit)) => (Angle::atan2(y, x), fit),
@@ -161,8 +167,10 @@ impl Plane {
         }
     }
 
-    /// `v` in this plane's coordinates.
-    #[inline]
+    /// `v` in this plane's coordinates (out of line with `small-ik`: one copy of its
+    /// three dot products for every caller).
+    #[cfg_attr(feature = "small-ik", inline(never))]
+    #[cfg_attr(not(feature = "small-ik"), inline)]
     pub fn split(&self, v: &V3) -> Planar {
         Planar {
             v: [self.e1.dot(v), self.e2.dot(v)],
