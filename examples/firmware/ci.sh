@@ -4,7 +4,8 @@
 #      qemu-system-arm (Debian's apt-get, non-interactive);
 #   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32, IK; the Jaco's general
 #      6R IK and the stack it takes) and the host check;
-#      twice: the default closed-form IK, then the size-first one (feature small-ik);
+#      three times: the default closed-form IK, then the size-first one (feature
+#      small-ik) at opt-level "s" and at "z";
 #   3. runs the firmware on QEMU's mps2-an386 (Cortex-M4F) with a time limit, its
 #      semihosting output piped into the host check, which compares every value with the
 #      host's (see src/bin/check.rs). Exit status 0 only if all of it succeeded.
@@ -60,8 +61,11 @@ run() {
     "$check" "$out"
 }
 
-# The default IK (the regular poses in lanes), then the size-first one (`small-ik`);
-# each bit-identical to the host built the same way, and the two with the same solutions.
+# The default IK (the regular poses in lanes), then the size-first one (`small-ik`), at
+# the profile's opt-level "s" and at "z" (the size-first path of README.md, "Flash
+# size"); each bit-identical to the host built the same way, all with the same solutions.
 run lanes
 run small --features small-ik
 "$target_dir/$host/release/check" --same-ik "$outputs/lanes" "$outputs/small"
+CARGO_PROFILE_RELEASE_OPT_LEVEL=z run small-z --features small-ik
+"$target_dir/$host/release/check" --same-ik "$outputs/small" "$outputs/small-z"
