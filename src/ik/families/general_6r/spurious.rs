@@ -87,6 +87,27 @@ impl<const N: usize> Reflection<N> {
 /// lost: `c` of rank below four, or dependent eigenvectors.
 const RANK: f64 = 1e-8;
 
+/// Householder QR of eight `columns` (reduced in place): the reflections, or `None` where
+/// a diagonal entry of the triangular factor is below [`RANK`] of the largest or not a
+/// number (the columns dependent).
+fn qr<const N: usize>(columns: &mut [[f64; N]; 8]) -> Option<[Option<Reflection<N>>; 8]> {
+    let mut reflections: [Option<Reflection<N>>; 8] = Default::default();
+    let mut diagonal = [0.0f64; 8];
+    for k in 0..8 {
+        for done in reflections.iter().take(k).flatten() {
+            done.apply(&mut columns[k]);
+        }
+        let (h, alpha) = Reflection::new(&columns[k], k);
+        diagonal[k] = abs(alpha);
+        reflections[k] = Some(h);
+    }
+    let largest = diagonal.iter().fold(0.0f64, |m, &d| m.max(d));
+    if !largest.is_finite() || diagonal.iter().any(|&d| d.is_nan() || d <= RANK * largest) {
+        return None;
+    }
+    Some(reflections)
+}
+
 /// The upper right block of `Hᵀ L H` must be below this relative to `L`'s largest entry
 /// (rounding: measured at most 1.5e-15 over the 20 180 systems of the Jaco's bench poses).
 const DEFLATED: f64 = 1e-10;
@@ -128,20 +149,7 @@ pub(super) fn deflated(l: &mut [[f64; 24]; 24], sys: &System) -> Option<[[f64; 1
         }
     }
     // Householder QR of the eight columns: their span onto the first eight coordinates.
-    let mut reflections: [Option<Reflection<24>>; 8] = Default::default();
-    let mut diagonal = [0.0f64; 8];
-    for k in 0..8 {
-        for done in reflections.iter().take(k).flatten() {
-            done.apply(&mut z[k]);
-        }
-        let (h, alpha) = Reflection::new(&z[k], k);
-        diagonal[k] = abs(alpha);
-        reflections[k] = Some(h);
-    }
-    let largest = diagonal.iter().fold(0.0f64, |m, &d| m.max(d));
-    if !largest.is_finite() || diagonal.iter().any(|&d| d.is_nan() || d <= RANK * largest) {
-        return None;
-    }
+    let reflections = qr(&mut z)?;
     // Hᵀ L H, one reflection at a time from both sides.
     let size = l.iter().flatten().fold(0.0f64, |m, x| m.max(abs(*x)));
     for h in reflections.iter().flatten() {
@@ -178,20 +186,7 @@ fn spurious_combinations(c: &[[f64; 8]; 6]) -> Option<[[f64; 12]; 2]> {
             g[2 * v + 1][6 + e] = cr;
         }
     }
-    let mut reflections: [Option<Reflection<12>>; 8] = Default::default();
-    let mut diagonal = [0.0f64; 8];
-    for k in 0..8 {
-        for done in reflections.iter().take(k).flatten() {
-            done.apply(&mut g[k]);
-        }
-        let (h, alpha) = Reflection::new(&g[k], k);
-        diagonal[k] = abs(alpha);
-        reflections[k] = Some(h);
-    }
-    let largest = diagonal.iter().fold(0.0f64, |m, &d| m.max(d));
-    if !largest.is_finite() || diagonal.iter().any(|&d| d.is_nan() || d <= RANK * largest) {
-        return None;
-    }
+    let reflections = qr(&mut g)?;
     // Q e_j for j = 8..12: the reflections applied last to first.
     let null: [[f64; 12]; 4] = core::array::from_fn(|j| {
         let mut x = [0.0; 12];
