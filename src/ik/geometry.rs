@@ -85,7 +85,7 @@ pub(crate) fn mv(m: &M3, v: &V3) -> V3 {
 /// `a bᵀ`, as the operators compute it (out of line with `small-ik`, as [`mv`]).
 #[cfg_attr(feature = "small-ik", inline(never))]
 #[cfg_attr(not(feature = "small-ik"), inline(always))]
-pub(crate) fn m_mt(a: &M3, b: &M3) -> M3 {
+pub(crate) fn mul_transposed(a: &M3, b: &M3) -> M3 {
     a * b.transpose()
 }
 

@@ -2,7 +2,7 @@
 //! joint, shared by the branch-by-branch solvers ([`super::families`]) and the lanes
 //! ([`super::regular`]).
 
-use super::geometry::{m_mt, meet, mv, Geometry, Pose, M3, V3};
+use super::geometry::{meet, mul_transposed, mv, Geometry, Pose, M3, V3};
 
 /// **h2 ∥ h3 ∥ h4, h5 ∩ h6** (Universal Robots): the links between the joints' points up to
 /// where axes 5 and 6 meet, the senses of the parallel axes, and that point at the target.
@@ -50,7 +50,7 @@ impl ThreeParallel {
 /// the last link (given at `q = 0`) is at the target: `p0T − R06 (p_tool − c)`.
 #[inline(always)]
 pub fn target_point(g: &Geometry<6>, pose: &Pose, c: &V3) -> (M3, V3) {
-    let r06 = m_mt(&pose.r, &g.r_tool);
+    let r06 = mul_transposed(&pose.r, &g.r_tool);
     (r06, pose.p - mv(&r06, &(g.p_tool - c)))
 }
 
