@@ -31,20 +31,23 @@ impl System {
     pub(super) fn real_roots(&self, roots: &mut [(f64, f64); 24]) -> usize {
         let mut companion = self.companion_matrix();
         // The eight eigenvalues every pencil has at x = ±i taken out first where they
-        // can be (`spurious.rs`), else all 24 (of the matrix it left similar).
+        // can be (`spurious.rs`); else — or where the QR of the sixteen does not converge
+        // — all 24, of the matrix it left similar.
         let mut values = [(0.0, 0.0); 24];
-        let count = match deflated(&mut companion, self) {
-            Some(mut other) => eigenvalues(&mut other, SWEEPS_DEFLATED).map(|v| {
+        let sixteen = deflated(&mut companion, self)
+            .and_then(|mut other| eigenvalues(&mut other, SWEEPS_DEFLATED));
+        let count = match sixteen {
+            Some(v) => {
                 values[..16].copy_from_slice(&v);
                 16
-            }),
-            None => eigenvalues(&mut companion, SWEEPS).map(|v| {
-                values = v;
-                24
-            }),
-        };
-        let Some(count) = count else {
-            return 0;
+            }
+            None => match eigenvalues(&mut companion, SWEEPS) {
+                Some(v) => {
+                    values = v;
+                    24
+                }
+                None => return 0,
+            },
         };
         let mut n = 0;
         for &(re, im) in &values[..count] {
