@@ -216,34 +216,9 @@ mod tests {
     use super::super::eigenvalues::eigenvalues;
     use super::super::{System, FORMULATIONS};
     use super::*;
-    use crate::ik::geometry::{Geometry, Pose, M3, V3};
+    use crate::ik::geometry::examples::general_6r as general;
+    use crate::ik::geometry::Pose;
     use crate::ik::XorShift64;
-
-    /// Six axes in general position (no two parallel, none meeting).
-    fn general() -> Geometry<6> {
-        let unit = |x: f64, y: f64, z: f64| V3::new(x, y, z).normalize();
-        Geometry {
-            h: [
-                unit(0.0, 0.0, 1.0),
-                unit(0.1, 1.0, 0.2),
-                unit(0.3, 0.9, -0.1),
-                unit(1.0, 0.2, 0.1),
-                unit(0.2, 1.0, -0.3),
-                unit(0.9, 0.1, 0.4),
-            ],
-            p: [
-                V3::zeros(),
-                V3::new(0.05, 0.0, 0.3),
-                V3::new(0.4, 0.1, 0.35),
-                V3::new(0.5, 0.05, 0.6),
-                V3::new(0.7, 0.12, 0.55),
-                V3::new(0.8, 0.0, 0.6),
-            ],
-            prismatic: [false; 6],
-            r_tool: M3::identity(),
-            p_tool: V3::new(0.9, 0.0, 0.65),
-        }
-    }
 
     /// The deflated matrix's sixteen eigenvalues are the companion's twenty-four but
     /// the eight at `x = ±i` (`1 / x` for a reversed pencil: `∓i`), on every regular
