@@ -5,7 +5,8 @@
 #   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32, IK; the Jaco's general
 #      6R IK and the stack it takes) and the host check;
 #      three times: the default closed-form IK, then the size-first one (feature
-#      small-ik) at opt-level "s" and at "z";
+#      small-ik) at opt-level "s" and at "z"; the size-first UR5 `ik`'s flash at "s"
+#      checked under 32 KiB (size.py);
 #   3. runs the firmware on QEMU's mps2-an386 (Cortex-M4F) with a time limit, its
 #      semihosting output piped into the host check, which compares every value with the
 #      host's (see src/bin/check.rs). Exit status 0 only if all of it succeeded.
@@ -67,5 +68,11 @@ run() {
 run lanes
 run small --features small-ik
 "$target_dir/$host/release/check" --same-ik "$outputs/lanes" "$outputs/small"
+# The size-first `ik` at the profile's opt-level "s" stays under 32 KiB (README.md,
+# "Flash size"); size.py reads the symbols with the llvm-tools component.
+if ! rustup component list --installed | grep -q '^llvm-tools'; then
+    rustup component add llvm-tools
+fi
+python3 size.py --features small-ik --max-ik-f64 32768 | tail -n 1
 CARGO_PROFILE_RELEASE_OPT_LEVEL=z run small-z --features small-ik
 "$target_dir/$host/release/check" --same-ik "$outputs/small" "$outputs/small-z"

@@ -9,7 +9,10 @@ its size is the generated method's code), then the library routines each precisi
 reaches through calls (libm's sin/cos, compiler-builtins' soft-float f64), counted once
 per precision.
 
-    python3 size.py [--opt-level s|z|1|2|3] [--features small-ik]
+    python3 size.py [--opt-level s|z|1|2|3] [--features small-ik] [--max-ik-f64 BYTES]
+
+`--max-ik-f64`: exit with status 1 when the UR5's f64 `ik` adds more than BYTES (ci.sh
+holds the size-first path under 32 KiB this way).
 """
 import argparse
 import os
@@ -97,6 +100,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--opt-level", default="s")
     ap.add_argument("--features", default="", help="e.g. small-ik")
+    ap.add_argument("--max-ik-f64", type=int, default=None,
+                    help="fail if the UR5's f64 ik adds more than this many bytes")
     args = ap.parse_args()
     elf = build(args.opt_level, args.features)
     size, graph = sizes(elf), calls(elf)
@@ -127,7 +132,7 @@ def main():
     # The closed-form IK, f64 and f32 (the f32 one solves in f64): each wrapper, and what it
     # reaches beyond the three methods' routines of its precision above (the subproblem
     # solvers, `finish`, the residual check, …); and what both share.
-    reached = {}
+    reached, added = {}, {}
     for p in ("f64", "f32"):
         ik_root = f"ur5_ik_{p}"
         if ik_root not in size:
@@ -140,6 +145,7 @@ def main():
         print(f"| wrapper `{ik_root}` | {size[ik_root]} |")
         print(f"| routines only `ik` reaches | {n_own} |")
         print(f"| **total added by `ik`** | **{size[ik_root] + n_own}** |")
+        added[p] = size[ik_root] + n_own
         print(f"\n{p} ik routines: " + ", ".join(f"{short(s)} {size.get(s, 0)}" for s in own))
     if len(reached) == 2:
         shared = reached["f64"] & reached["f32"]
@@ -161,6 +167,11 @@ def main():
         print(f"| **of which the UR5's code above does not reach** | **{n_own}** |")
         print(f"\nJaco ik routines: " + ", ".join(f"{short(s)} {size.get(s, 0)}" for s in own[:25]))
     print(f"\nwhole image: {subprocess.run([tool('llvm-size'), elf], capture_output=True, text=True).stdout.strip()}")
+    if args.max_ik_f64 is not None:
+        n = added.get("f64")
+        if n is None or n > args.max_ik_f64:
+            sys.exit(f"size: the UR5's f64 `ik` adds {n} bytes, over the {args.max_ik_f64} allowed")
+        print(f"size: the UR5's f64 `ik` adds {n} bytes, within {args.max_ik_f64}")
 
 
 if __name__ == "__main__":

@@ -371,18 +371,26 @@ const PARALLEL: f64 = 1e-20;
 
 /// Where the axes of joints `i` and `j` (0-based) meet, at `q = 0` (the midpoint of the
 /// closest points: the engine proved they meet, this only absorbs rounding).
-#[inline]
+// Indexed where it is called (the joints are constants there), so the solve itself has
+// no bounds check: on a microcontroller a panic path pulls in the formatting machinery.
+#[inline(always)]
 pub(crate) fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
+    meet_lines((&g.p[i], &g.h[i]), (&g.p[j], &g.h[j]))
+}
+
+/// [`meet`] for the lines through `p` along `h`.
+#[inline]
+fn meet_lines((pi, hi): (&V3, &V3), (pj, hj): (&V3, &V3)) -> V3 {
     // The generated geometries often place a point where the axes meet already (exactly
     // on the other axis): then that point, without the closest-points solve.
-    for (a, b) in [(i, j), (j, i)] {
-        if g.h[a].cross(&(g.p[b] - g.p[a])) == V3::zeros() {
-            return g.p[b];
+    for (h, a, b) in [(hi, pi, pj), (hj, pj, pi)] {
+        if h.cross(&(b - a)) == V3::zeros() {
+            return *b;
         }
     }
-    match closest_points(&g.p[i], &g.h[i], &g.p[j], &g.h[j], PARALLEL) {
+    match closest_points(pi, hi, pj, hj, PARALLEL) {
         Some((a, b)) => (a + b) * 0.5,
-        None => g.p[i],
+        None => *pi,
     }
 }
 

@@ -46,12 +46,14 @@ impl<const N: usize, const K: usize> Candidates<N, K> {
 
     /// The candidates.
     pub fn as_slice(&self) -> &[Candidate<N>] {
-        &self.items[..self.len]
+        // `len ≤ K` always (`push`); saying so keeps a panic path (and, on a
+        // microcontroller, the formatting machinery it pulls in) out of every `ik`.
+        &self.items[..self.len.min(K)]
     }
 
     /// The candidates, to be changed in place (a family polishing its branches).
     pub fn as_mut_slice(&mut self) -> &mut [Candidate<N>] {
-        &mut self.items[..self.len]
+        &mut self.items[..self.len.min(K)]
     }
 }
 
@@ -142,15 +144,32 @@ impl<const N: usize, const K: usize, T: Copy + Default> IkSolutions<N, K, T> {
 
     /// The solutions.
     pub fn as_slice(&self) -> &[IkBranch<N, T>] {
-        &self.items[..self.len]
+        // `len ≤ K` always; no panic path (see `Candidates::as_slice`).
+        &self.items[..self.len.min(K)]
+    }
+
+    /// Adds `b` (never more than `K`: `finish` adds at most one per candidate).
+    #[inline(always)]
+    fn push(&mut self, b: IkBranch<N, T>) {
+        // `get_mut`, not indexing: no panic path (see `Candidates::as_slice`).
+        if let Some(slot) = self.items.get_mut(self.len) {
+            *slot = b;
+            self.len += 1;
+        }
     }
 
     /// Keeps the solutions `keep` says yes to, in order.
     fn retain(&mut self, keep: impl Fn(&IkBranch<N, T>) -> bool) {
         let mut len = 0;
-        for i in 0..self.len {
+        for i in 0..self.len.min(K) {
             if keep(&self.items[i]) {
-                self.items[len] = self.items[i];
+                if len < i {
+                    // A swap of two places known apart: a copy within one array is a
+                    // `memmove`, 1.5 KB of a microcontroller's flash that nothing else in
+                    // `ik` needs.
+                    let (front, back) = self.items.split_at_mut(i);
+                    core::mem::swap(&mut front[len], &mut back[0]);
+                }
                 len += 1;
             }
         }
@@ -266,7 +285,8 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     let mut unchecked = [false; K];
     let mut any_unchecked = false;
     for c in candidates.as_slice() {
-        let Some((q, within_limits)) = settle(c.q, revolute, limits) else {
+        let mut q = [0.0; N];
+        let Some(within_limits) = settle(c.q, &mut q, revolute, limits) else {
             continue;
         };
         // A quartic's simple root (`Checked`) is no more singular than an exact
@@ -306,25 +326,30 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         // that no solution set holds a duplicate). So an exact candidate with no
         // checked one before it is a new solution, as it is.
         if c.fit == Fit::Exact && !any_unchecked {
-            out.items[out.len] = branch;
-            out.len += 1;
+            out.push(branch);
             continue;
         }
-        let copy = (0..out.len)
-            .filter(|&i| c.fit != Fit::Exact || unchecked[i])
-            .find(|&i| same(&out.items[i].q, &q, revolute));
-        if let Some(i) = copy {
+        let n = out.len;
+        let copy = out
+            .items
+            .iter_mut()
+            .zip(unchecked.iter_mut())
+            .take(n)
+            .filter(|(_, u)| c.fit != Fit::Exact || **u)
+            .find(|(b, _)| same(&b.q, &q, revolute));
+        if let Some((b, u)) = copy {
             // Keep the better of two copies of one configuration.
-            if exact && !out.items[i].exact {
-                out.items[i] = branch;
-                unchecked[i] = c.fit != Fit::Exact;
+            if exact && !b.exact {
+                *b = branch;
+                *u = c.fit != Fit::Exact;
             }
             continue;
         }
-        unchecked[out.len] = c.fit != Fit::Exact;
+        if let Some(u) = unchecked.get_mut(out.len) {
+            *u = c.fit != Fit::Exact;
+        }
         any_unchecked |= c.fit != Fit::Exact;
-        out.items[out.len] = branch;
-        out.len += 1;
+        out.push(branch);
     }
     // Only a checked branch can miss.
     if any_unchecked && out.iter().any(|b| b.exact) {
@@ -335,13 +360,14 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
 
 /// A candidate's joint values as a solution: revolute joints wrapped into `(−π, π]`, then
 /// by a whole turn into their limits where that helps; with whether every joint is within
-/// its limits. `None` for a non-finite value.
+/// its limits, into `out`. `None` for a non-finite value.
 #[inline(always)]
 fn settle<const N: usize>(
     mut q: [f64; N],
+    out: &mut [f64; N],
     revolute: &[bool; N],
     limits: &[[f64; 2]; N],
-) -> Option<([f64; N], bool)> {
+) -> Option<bool> {
     // As the solvers almost always give it — revolute joints within (−π, π], every joint
     // within its limits (so finite) — a candidate stays as it is: one branch-free test of
     // all joints. (Limits that hold a whole turn hold every wrapped value: a constant
@@ -358,7 +384,8 @@ fn settle<const N: usize>(
         };
     }
     if settled {
-        return Some((q, true));
+        *out = q;
+        return Some(true);
     }
     // One pass; the flags with `&=`, not `&&`.
     let (mut finite, mut within_limits) = (true, true);
@@ -377,7 +404,8 @@ fn settle<const N: usize>(
         finite &= q[i].is_finite();
         within_limits &= (q[i] >= lo) & (q[i] <= hi);
     }
-    finite.then_some((q, within_limits))
+    *out = q;
+    finite.then_some(within_limits)
 }
 
 /// `max |fk − pose|` over the top three rows.

@@ -167,7 +167,8 @@ impl Roots {
     /// The angles.
     #[inline]
     pub fn as_slice(&self) -> &[Angle] {
-        &self.angles[..self.n]
+        // `n` is 1 or 2; `get` keeps a panic path out of every `ik`.
+        self.angles.get(..self.n).unwrap_or(&[])
     }
 
     /// The angles' values.
