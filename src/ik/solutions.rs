@@ -279,19 +279,52 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     limits: &[[f64; 2]; N],
     check: &C,
 ) -> IkSolutions<N, K> {
+    let each = candidates.as_slice().iter().map(|c| (c.q, c.fit));
+    finish_each(each, pose, revolute, limits, check)
+}
+
+/// [`finish`] for the candidates of the arm with joint `k` locked at `q_k` (`N = M + 1`
+/// joints in all): each candidate gets the locked joint put back as it is settled, with
+/// no second candidate set ([`with_locked`]) between.
+#[inline]
+pub fn finish_locked<const M: usize, const N: usize, const K: usize, C: Check<N>>(
+    candidates: &Candidates<M, K>,
+    k: usize,
+    q_k: f64,
+    pose: &Pose,
+    revolute: &[bool; N],
+    limits: &[[f64; 2]; N],
+    check: &C,
+) -> IkSolutions<N, K> {
+    let each = candidates
+        .as_slice()
+        .iter()
+        .map(|c| (with_joint(&c.q, k, q_k), c.fit));
+    finish_each(each, pose, revolute, limits, check)
+}
+
+/// What [`finish`] and [`finish_locked`] do, on the candidates' joint values and fits.
+#[inline(always)]
+fn finish_each<const N: usize, const K: usize, C: Check<N>>(
+    candidates: impl Iterator<Item = ([f64; N], Fit)>,
+    pose: &Pose,
+    revolute: &[bool; N],
+    limits: &[[f64; 2]; N],
+    check: &C,
+) -> IkSolutions<N, K> {
     let mut out = IkSolutions::empty();
     // `unchecked[i]`: solution i came from a candidate some subproblem did not solve
     // exactly.
     let mut unchecked = [false; K];
     let mut any_unchecked = false;
-    for c in candidates.as_slice() {
+    for (c_q, c_fit) in candidates {
         let mut q = [0.0; N];
-        let Some(within_limits) = settle(c.q, &mut q, revolute, limits) else {
+        let Some(within_limits) = settle(c_q, &mut q, revolute, limits) else {
             continue;
         };
         // A quartic's simple root (`Checked`) is no more singular than an exact
         // subproblem's: only its accuracy is measured.
-        let (residual, singular) = match c.fit {
+        let (residual, singular) = match c_fit {
             Fit::Exact => (0.0, 0),
             fit => (
                 check.residual(&q, pose),
@@ -311,7 +344,7 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             singular,
             // A least-squares step that still reaches the pose met a tangency: a double
             // root that rounding pushed just outside.
-            at_singularity: match c.fit {
+            at_singularity: match c_fit {
                 Fit::Double | Fit::Free => true,
                 Fit::LeastSquares => exact,
                 Fit::Exact | Fit::Checked => false,
@@ -325,7 +358,7 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
         // least-squares candidate can be one configuration twice (the self-tests check
         // that no solution set holds a duplicate). So an exact candidate with no
         // checked one before it is a new solution, as it is.
-        if c.fit == Fit::Exact && !any_unchecked {
+        if c_fit == Fit::Exact && !any_unchecked {
             out.push(branch);
             continue;
         }
@@ -335,20 +368,20 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
             .iter_mut()
             .zip(unchecked.iter_mut())
             .take(n)
-            .filter(|(_, u)| c.fit != Fit::Exact || **u)
+            .filter(|(_, u)| c_fit != Fit::Exact || **u)
             .find(|(b, _)| same(&b.q, &q, revolute));
         if let Some((b, u)) = copy {
             // Keep the better of two copies of one configuration.
             if exact && !b.exact {
                 *b = branch;
-                *u = c.fit != Fit::Exact;
+                *u = c_fit != Fit::Exact;
             }
             continue;
         }
         if let Some(u) = unchecked.get_mut(out.len) {
-            *u = c.fit != Fit::Exact;
+            *u = c_fit != Fit::Exact;
         }
-        any_unchecked |= c.fit != Fit::Exact;
+        any_unchecked |= c_fit != Fit::Exact;
         out.push(branch);
     }
     // Only a checked branch can miss.
@@ -467,16 +500,20 @@ pub fn with_locked<const N: usize, const M: usize, const K: usize>(
 ) -> Candidates<M, K> {
     let mut out = Candidates::default();
     for x in c.as_slice() {
-        let mut q = [0.0; M];
-        let mut it = x.q.iter();
-        for (i, slot) in q.iter_mut().enumerate() {
-            *slot = if i == k {
-                q_k
-            } else {
-                *it.next().unwrap_or(&0.0)
-            };
+        out.push(with_joint(&x.q, k, q_k), x.fit);
+    }
+    out
+}
+
+/// `q` with joint `k` at `q_k` put in (`M = N + 1` joints).
+#[inline(always)]
+fn with_joint<const N: usize, const M: usize>(q: &[f64; N], k: usize, q_k: f64) -> [f64; M] {
+    let mut out = [q_k; M];
+    for (i, x) in q.iter().enumerate() {
+        // Joints after `k` move one place on (`k` is a constant where this is inlined).
+        if let Some(slot) = out.get_mut(if i < k { i } else { i + 1 }) {
+            *slot = *x;
         }
-        out.push(q, x.fit);
     }
     out
 }
@@ -729,6 +766,42 @@ mod tests {
         assert!(IkSolutions::<2, 4, f32>::empty()
             .nearest(&[0.0; 2], &[true; 2], &limits)
             .is_none());
+    }
+
+    /// A check that reads the residual off the first joint (and no singular factor).
+    struct FirstJoint;
+    impl Check<3> for FirstJoint {
+        fn residual(&self, q: &[f64; 3], _: &Pose) -> f64 {
+            q[0].abs()
+        }
+        fn singular(&self, _: &[f64; 3]) -> u32 {
+            0
+        }
+    }
+
+    #[test]
+    fn finish_locked_is_finish_of_the_whole_arms_candidates() {
+        // Joint 2 (0-based 1) locked at 0.7; an exact candidate, a least-squares copy of
+        // it, a least-squares one off the pose (dropped by the near-miss rule: the
+        // compaction moves the last one down), one beyond a whole turn, and one exact.
+        let mut c = Candidates::<2, 6>::default();
+        c.push([0.0, 1.0], Fit::Exact);
+        c.push([1e-12, 1.0], Fit::LeastSquares);
+        c.push([0.5, -1.0], Fit::LeastSquares);
+        c.push([1e-11, -1.5 + TAU], Fit::LeastSquares);
+        c.push([0.0, 2.0], Fit::Exact);
+        let pose = Pose {
+            r: M3::identity(),
+            p: V3::zeros(),
+        };
+        let (revolute, limits) = ([true; 3], [[-PI, PI]; 3]);
+        let locked = finish_locked(&c, 1, 0.7, &pose, &revolute, &limits, &FirstJoint);
+        let whole = with_locked::<2, 3, 6>(&c, 1, 0.7);
+        let reference = finish(&whole, &pose, &revolute, &limits, &FirstJoint);
+        assert_eq!(locked.as_slice(), reference.as_slice());
+        let q: [[f64; 3]; 3] = core::array::from_fn(|i| locked.as_slice()[i].q);
+        assert_eq!(locked.len(), 3);
+        assert_eq!(q, [[0.0, 0.7, 1.0], [1e-11, 0.7, -1.5], [0.0, 0.7, 2.0]]);
     }
 
     #[test]

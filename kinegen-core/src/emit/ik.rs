@@ -465,11 +465,6 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
                 ));
                 lets.push(call("g6", "&target6", "&free6", "c6", None));
             }
-            lets.push(format!(
-                "let candidates = ::kinegen::ik::solutions::with_locked::<{}, {n}, {}>(&c6, {k}, q_locked);",
-                n - 1,
-                model.plan.max_solutions
-            ));
             (
                 format!("pose: &[[{f}; 4]; 4], q_locked: {f}, free: &[{f}; {n}]"),
                 format!(
@@ -480,20 +475,24 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
             )
         }
     };
-    let result = match chain.scalar {
-        Scalar::F64 => "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &Self::LIMITS, self)",
-        Scalar::F32 => "::kinegen::ik::solutions::finish(&candidates, &target, &Self::REVOLUTE, &limits, self).to_f32()",
+    // A locked joint goes back in as `finish` settles each candidate.
+    let (finish, candidates) = match locked {
+        None => ("finish".to_string(), "&candidates".to_string()),
+        Some(k) => ("finish_locked".to_string(), format!("&c6, {k}, q_locked")),
     };
+    let (limits, to_f32) = match chain.scalar {
+        Scalar::F64 => ("&Self::LIMITS", ""),
+        Scalar::F32 => ("&limits", ".to_f32()"),
+    };
+    let result = format!(
+        "::kinegen::ik::solutions::{finish}({candidates}, &target, &Self::REVOLUTE, {limits}, self){to_f32}"
+    );
     Method {
         doc,
         name: "ik_seeded",
         rates: false,
         ret: ty.into(),
-        body: MethodBody::Custom {
-            args,
-            lets,
-            result: result.into(),
-        },
+        body: MethodBody::Custom { args, lets, result },
     }
 }
 
