@@ -9,7 +9,7 @@ use std::vec::Vec;
 use super::families::{self, WristPair};
 use super::geometry::{Geometry, Pose, M3, V3};
 use super::reversed::solve_reversed;
-use super::solutions::{finish, with_locked, without, Candidates, Check, IkSolutions};
+use super::solutions::{finish, finish_locked, without, Candidates, Check, IkSolutions};
 
 /// A robot's zero-configuration geometry as numbers (see [`Geometry`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -192,10 +192,17 @@ fn finished<const N: usize, const K: usize>(
     checks: &Checks,
     out: &mut DynSolutions,
 ) {
-    let pose = Pose::from_matrix(&pr.pose);
-    let revolute: [bool; N] = core::array::from_fn(|i| pr.revolute[i]);
-    let limits: [[f64; 2]; N] = core::array::from_fn(|i| pr.limits[i]);
+    let (pose, revolute, limits) = finish_inputs::<N>(pr);
     out.fill(&finish(c, &pose, &revolute, &limits, checks));
+}
+
+/// The pose, which joints turn, and the limits, as `finish` takes them for `N` joints.
+fn finish_inputs<const N: usize>(pr: &DynProblem) -> (Pose, [bool; N], [[f64; 2]; N]) {
+    (
+        Pose::from_matrix(&pr.pose),
+        core::array::from_fn(|i| pr.revolute[i]),
+        core::array::from_fn(|i| pr.limits[i]),
+    )
 }
 
 fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
@@ -358,8 +365,10 @@ fn six_or_locked<const K: usize>(
             let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
             let free: [f64; 6] = without(&free7, k);
             let c6 = solve(&g, &free).ok_or("unknown solver")?;
-            let c = with_locked::<6, 7, K>(&c6, k, pr.q_locked);
-            finished(&c, pr, checks, out);
+            // The locked joint put back as each candidate is settled.
+            let (pose, revolute, limits) = finish_inputs::<7>(pr);
+            let s = finish_locked(&c6, k, pr.q_locked, &pose, &revolute, &limits, checks);
+            out.fill(&s);
             Ok(())
         }
         _ => Err("closed-form IK is for 6 joints, or 7 with one locked"),
