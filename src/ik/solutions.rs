@@ -510,6 +510,14 @@ pub fn with_locked<const N: usize, const M: usize, const K: usize>(
 /// `q` with joint `k` at `q_k` put in (`M = N + 1` joints).
 #[inline(always)]
 fn with_joint<const N: usize, const M: usize>(q: &[f64; N], k: usize, q_k: f64) -> [f64; M] {
+    // A caller naming the wrong arm does not build.
+    const {
+        assert!(
+            M == N + 1,
+            "the whole arm has one joint more than the locked one"
+        )
+    };
+    debug_assert!(k < M, "the locked joint is one of the arm's");
     let mut out = [q_k; M];
     for (i, x) in q.iter().enumerate() {
         // Joints after `k` move one place on (`k` is a constant where this is inlined).
