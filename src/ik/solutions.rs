@@ -151,6 +151,8 @@ impl<const N: usize, const K: usize, T: Copy + Default> IkSolutions<N, K, T> {
     /// Adds `b` (never more than `K`: `finish` adds at most one per candidate).
     #[inline(always)]
     fn push(&mut self, b: IkBranch<N, T>) {
+        // As `Candidates::push`: more than `K` would be a solver bug, never silent in tests.
+        debug_assert!(self.len < K, "more than {K} IK solutions");
         // `get_mut`, not indexing: no panic path (see `Candidates::as_slice`).
         if let Some(slot) = self.items.get_mut(self.len) {
             *slot = b;
