@@ -8,6 +8,7 @@ use kinegen_core::front::toml_file::{
 };
 use kinegen_core::front::urdf::Urdf;
 use kinegen_core::model::raw::PathSeg;
+use kinegen_core::model::robot::TaskRow;
 use kinegen_core::{Chain, Options};
 
 use crate::error::CliError;
@@ -42,11 +43,41 @@ pub struct UrdfArgs {
     /// writes them in `show --what model`) and keep the names in every formula.
     #[arg(long)]
     pub symbolic: bool,
+    /// URDF: the task rows an arm with fewer than six joints solves, and whose Jacobian
+    /// `show` gives (`--task x,y,z,rz` for a SCARA); a TOML robot says `task = [...]`.
+    #[arg(long, value_delimiter = ',')]
+    pub task: Option<Vec<String>>,
 }
 
 impl UrdfArgs {
     fn given(&self) -> bool {
-        self.base.is_some() || self.tip.is_some() || self.snap.is_some() || self.symbolic
+        self.base.is_some()
+            || self.tip.is_some()
+            || self.snap.is_some()
+            || self.symbolic
+            || self.task.is_some()
+    }
+
+    /// The rows `--task` names, each once, or why not.
+    fn task_rows(&self) -> Result<Option<Vec<TaskRow>>, CliError> {
+        let Some(names) = &self.task else {
+            return Ok(None);
+        };
+        let mut rows = Vec::new();
+        for name in names.iter().map(|n| n.trim()) {
+            match TaskRow::parse(name) {
+                Some(r) if rows.contains(&r) => {
+                    return Err(CliError::Usage(format!("--task: row `{name}` given twice")))
+                }
+                Some(r) => rows.push(r),
+                None => {
+                    return Err(CliError::Usage(format!(
+                        "--task: unknown row `{name}`: expected x, y, z, rx, ry or rz"
+                    )))
+                }
+            }
+        }
+        Ok(Some(rows))
     }
 }
 
@@ -59,7 +90,7 @@ pub fn load(arg: &str, urdf: &UrdfArgs) -> Result<(Chain, Options), CliError> {
     }
     if urdf.given() {
         return Err(CliError::Usage(
-            "--base, --tip, --snap and --symbolic select the chain of a .urdf file; a TOML robot says them in the file (`params = \"auto\"` for --symbolic)"
+            "--base, --tip, --snap, --symbolic and --task select the chain of a .urdf file; a TOML robot says them in the file (`params = \"auto\"` for --symbolic, `task = [...]`)"
                 .into(),
         ));
     }
@@ -101,7 +132,8 @@ pub fn urdf_chain(urdf: &Urdf, args: &UrdfArgs) -> Result<Chain, CliError> {
         params: Vec::new(),
         symbolic: args.symbolic,
     };
-    urdf.chain(&selection).map_err(|e| {
+    let task = args.task_rows()?;
+    let mut chain = urdf.chain(&selection).map_err(|e| {
         // Name the option an error is about (`--tip`), after the file's line.
         CliError::Load(LoadError {
             errors: e
@@ -118,7 +150,11 @@ pub fn urdf_chain(urdf: &Urdf, args: &UrdfArgs) -> Result<Chain, CliError> {
                 })
                 .collect(),
         })
-    })
+    })?;
+    if task.is_some() {
+        chain.task = task;
+    }
+    Ok(chain)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! forward kinematics, solved by the binary, every solution checked against that
 //! reference again (not against the engine that produced it).
 
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 use std::path::PathBuf;
 
 use kinegen::ik::XorShift64;
@@ -206,6 +206,81 @@ fn planar_arm_solves_its_task_rows() {
     for q in solutions {
         let t = reference.fk(&floats(q)).unwrap();
         assert!((t[(0, 3)] - 0.5).abs() < 1e-12 && (t[(1, 3)] - 0.3).abs() < 1e-12);
+    }
+}
+
+/// A SCARA from its URDF (`robots/urdf/cobra600.urdf`): without task rows no closed form,
+/// and the error names the rows that give one; with `--task x,y,z,rz` every seeded
+/// configuration within the limits is recovered, each exact solution reaching the pose by
+/// the numeric reference of the same arm's DH table (`robots/scara.toml`).
+#[test]
+fn scara_urdf_solves_the_task_rows_given_on_the_command_line() {
+    let urdf = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../robots/urdf/cobra600.urdf");
+    let urdf = urdf.to_string_lossy().into_owned();
+    let rigid = "1,0,0,0.4,0,-1,0,0.1,0,0,-1,0.3,0,0,0,1";
+    let e = fails(&["ik", &urdf, "--pose", rigid]);
+    assert!(e.contains("--task x,y,z,rz"), "{e}");
+    let e = fails(&["ik", &urdf, "--task", "x,y,w", "--pose", rigid]);
+    assert!(e.contains("--task: unknown row `w`"), "{e}");
+    let e = fails(&["ik", &urdf, "--task", "x,y,x,rz", "--pose", rigid]);
+    assert!(e.contains("twice"), "{e}");
+    let e = fails(&["ik", "scara", "--task", "x,y,z,rz", "--pose", rigid]);
+    assert!(e.contains("task = [...]"), "{e}");
+
+    let (robot, _) = toml_file::load_file(&robot_file("scara")).unwrap();
+    let reference = NumericRobot::new(&robot).unwrap();
+    // The URDF's limits: ±105°, ±145°, the quill 0…0.21 m, the roll unlimited.
+    let limits = [[-1.8326, 1.8326], [-2.5307, 2.5307], [0.0, 0.21], [-PI, PI]];
+    let mut rng = XorShift64::new(0x5CA2A);
+    let qs: Vec<Vec<f64>> = (0..30)
+        .map(|_| {
+            limits
+                .iter()
+                .map(|[lo, hi]| lo + (hi - lo) * rng.next_f64())
+                .collect()
+        })
+        .collect();
+    let poses: Vec<Value> = qs
+        .iter()
+        .map(|q| pose_json(&reference.fk(q).unwrap()))
+        .collect();
+    let poses_file = tmp("cobra600-poses", &Value::from(poses));
+    let poses_arg = poses_file.to_string_lossy().into_owned();
+    let args = [
+        "ik", &urdf, "--task", "x,y,z,rz", "--json", "--poses", &poses_arg,
+    ];
+    let out: Value = serde_json::from_str(&stdout(&args)).unwrap();
+    let _ = std::fs::remove_file(&poses_file);
+    let results = out.as_array().unwrap();
+    assert_eq!(results.len(), qs.len());
+    for (i, (r, q0)) in results.iter().zip(&qs).enumerate() {
+        assert_eq!(r["family"], "planar");
+        let t0 = reference.fk(q0).unwrap();
+        let solutions: Vec<Vec<f64>> = r["solutions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(floats)
+            .collect();
+        let exact = r["exact"].as_array().unwrap();
+        let mut found = false;
+        for (q, ex) in solutions.iter().zip(exact) {
+            let d = distance(&reference.fk(q).unwrap(), &t0);
+            // The arm spans 0.6 m: 1e-12 of it, with room for a few roundings.
+            if ex.as_bool().unwrap() {
+                assert!(d < 1e-12, "pose {i}: exact solution {q:?} misses by {d:e}");
+            }
+            found |= q.iter().zip(q0).enumerate().all(|(k, (a, b))| {
+                let e = a - b;
+                let e = if k == 2 {
+                    e
+                } else {
+                    e - TAU * (e / TAU).round()
+                };
+                e.abs() < 1e-9
+            });
+        }
+        assert!(found, "pose {i}: {q0:?} is not among {solutions:?}");
     }
 }
 

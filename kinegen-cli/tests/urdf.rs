@@ -144,7 +144,7 @@ fn several_leaves_and_unknown_links_exit_2_with_the_line() {
     );
     let e = fails(&["show", "ur5", "--tip", "tool0"]);
     assert!(
-        e.contains("--base, --tip, --snap and --symbolic select the chain of a .urdf file"),
+        e.contains("--base, --tip, --snap, --symbolic and --task select the chain of a .urdf file"),
         "{e}"
     );
     let e = fails(&["show", "ur5", "--symbolic"]);

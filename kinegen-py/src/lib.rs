@@ -352,9 +352,11 @@ fn manipulability(inner: &Inner, q: &[f64], regs: &mut Vec<f64>) -> f64 {
 impl Robot {
     /// A chain of a URDF file: from `base` (default: the root link) to `tip` (default:
     /// the only leaf); angles within `snap` rad of a multiple of pi/12 and lengths within
-    /// `snap` m of 0 are taken exact (0 keeps every decimal); `symbolic` names every length.
+    /// `snap` m of 0 are taken exact (0 keeps every decimal); `symbolic` names every length;
+    /// `task` the rows an arm with fewer than six joints solves (`["x", "y", "z", "rz"]`
+    /// for a SCARA).
     #[staticmethod]
-    #[pyo3(signature = (path, base=None, tip=None, snap=1e-4, symbolic=false))]
+    #[pyo3(signature = (path, base=None, tip=None, snap=1e-4, symbolic=false, task=None))]
     fn from_urdf(
         py: Python<'_>,
         path: std::path::PathBuf,
@@ -362,6 +364,7 @@ impl Robot {
         tip: Option<String>,
         snap: f64,
         symbolic: bool,
+        task: Option<Vec<String>>,
     ) -> PyResult<Robot> {
         if !snap.is_finite() || snap < 0.0 {
             return Err(PyValueError::new_err(format!(
@@ -374,6 +377,7 @@ impl Robot {
             tip,
             snap: Some(snap),
             symbolic,
+            task,
         };
         let chain = robots::urdf_chain(&urdf, &args).map_err(to_py_err)?;
         Robot::build(py, chain, Options::default())

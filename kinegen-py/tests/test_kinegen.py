@@ -513,6 +513,22 @@ def test_no_closed_form_ik_is_a_value_error():
         r.ik(np.eye(4))
 
 
+def test_scara_urdf_solves_the_task_rows_it_is_given():
+    urdf = ROBOTS / "urdf" / "cobra600.urdf"
+    with pytest.raises(ValueError, match="task rows \\[x, y, z, rz\\] make it solvable"):
+        kinegen.Robot.from_urdf(urdf).ik(np.eye(4))
+    with pytest.raises(ValueError, match="unknown row `w`"):
+        kinegen.Robot.from_urdf(urdf, task=["x", "y", "w"])
+    r = kinegen.Robot.from_urdf(urdf, task=["x", "y", "z", "rz"])
+    assert r.ik_family == "planar"
+    q0 = np.array([0.4, -1.1, 0.12, 2.0])
+    sol = r.ik(r.fk(q0))
+    exact = sol["q"][sol["valid"] & sol["exact"]]
+    assert len(exact) == 2
+    np.testing.assert_allclose(r.fk(exact), np.broadcast_to(r.fk(q0), (2, 4, 4)), atol=1e-12)
+    assert np.abs(exact - q0).max(axis=1).min() < 1e-12
+
+
 # ---------------------------------------------------------------------------------------
 # The example script
 

@@ -30,9 +30,12 @@ class Robot:
         tip: Optional[str] = None,
         snap: float = 1e-4,
         symbolic: bool = False,
+        task: Optional[Sequence[str]] = None,
     ) -> "Robot":
         """The chain of a URDF file from ``base`` (default: the root link) to ``tip``
-        (default: the only leaf); values within ``snap`` of an exact one are snapped."""
+        (default: the only leaf); values within ``snap`` of an exact one are snapped;
+        ``task`` the rows an arm with fewer than six joints solves (a SCARA:
+        ``["x", "y", "z", "rz"]``)."""
     @staticmethod
     def from_toml(path: _Path) -> "Robot":
         """A robot file in kinegen's TOML format."""

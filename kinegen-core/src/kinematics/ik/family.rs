@@ -94,10 +94,55 @@ pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPl
             let labels: Vec<usize> = (0..6).collect();
             either_way(&axes, &kinds, &labels).map(|m| finish(m, None, Vec::new(), None))
         }
-        4 | 5 => pitch_roll(chain, max_terms, &kinds),
+        4 | 5 => pitch_roll(chain, max_terms, &kinds).map_err(|e| {
+            match task_that_solves(chain, max_terms, free) {
+                Some(rows) => {
+                    let rows: Vec<&str> = rows.iter().map(|r| r.name()).collect();
+                    format!(
+                        "{e}; declared task rows [{}] make it solvable (the `task` key; \
+                         `--task {}` for a URDF on the command line)",
+                        rows.join(", "),
+                        rows.join(",")
+                    )
+                }
+                None => e,
+            }
+        }),
         7 => seven(chain, max_terms, &kinds, free),
         _ => Err(OUT_OF_DOMAIN.into()),
     }
+}
+
+/// The task rows, one per joint, that give a chain without declared rows a closed form
+/// (a SCARA: its axes all along z, it solves x, y, z and rz, never a tilt), if any: the
+/// rows the planar family solves, else the tool point (3 joints), else the point and yaw.
+fn task_that_solves(chain: &Chain, max_terms: usize, free: Option<usize>) -> Option<Vec<TaskRow>> {
+    if chain.task.is_some() {
+        return None;
+    }
+    let kinds: Vec<JointKind> = chain.kinds().collect();
+    let revolute = kinds.iter().filter(|k| **k == JointKind::Revolute).count();
+    let mut planar = vec![TaskRow::X, TaskRow::Y];
+    if revolute == 3 {
+        planar.push(TaskRow::Rz);
+    }
+    if kinds.len() - revolute == 1 {
+        planar.push(TaskRow::Z);
+    }
+    planar.sort();
+    let candidates = [
+        planar,
+        vec![TaskRow::X, TaskRow::Y, TaskRow::Z],
+        vec![TaskRow::X, TaskRow::Y, TaskRow::Z, TaskRow::Rz],
+    ];
+    candidates
+        .into_iter()
+        .filter(|rows| rows.len() == chain.dof())
+        .find(|rows| {
+            let mut c = chain.clone();
+            c.task = Some(rows.clone());
+            plan(&c, max_terms, free).is_ok()
+        })
 }
 
 /// The 6-joint families on `labels`: those of quadratics read from the base, else from the
