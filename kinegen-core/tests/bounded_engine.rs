@@ -56,7 +56,10 @@ fn run(what: &str, src: &str, urdf: &str, ms: u64) -> (Duration, Vec<String>) {
     let start = Instant::now();
     let generated = generate(&chain, &ItemHeader::public("Oblique"), &options);
     let took = start.elapsed();
-    eprintln!("{what}: {took:?} of {ms} ms; notes: {:?}", generated.notes);
+    eprintln!(
+        "{what}: {took:?} of {ms} ms; stages: {:?}; notes: {:?}",
+        generated.times, generated.notes
+    );
     let code = generated.tokens.to_string();
     for f in [
         "fn fk",

@@ -44,17 +44,51 @@ pub fn struct_doc(chain: &Chain) -> String {
     s
 }
 
+/// The longest formula listing a function's doc shows, in bytes of text (about a
+/// thousand lines; the longest among the shipped robots, a Kinova Gen3 method's, is
+/// ~15 KB). A longer one is left out of the doc, which says so: nobody reads tens of
+/// thousands of intermediates in rustdoc, every formula stays in `FORMULAS`, and printing
+/// them twice more (text and MathML) was most of what a long chain's emission printed
+/// (200 oblique joints: 15 of 21 MB of code).
+pub const MAX_LISTING: usize = 64 * 1024;
+
+/// Bytes of the text listing of `body`'s formulas (`name = formula` lines).
+fn listing_len(body: &Body, names: &[String]) -> usize {
+    let defs: usize = body.defs.iter().map(|(n, e)| n.len() + e.len() + 4).sum();
+    let outputs: usize = names
+        .iter()
+        .zip(&body.outputs)
+        .map(|(n, e)| n.len() + e.len() + 4)
+        .sum();
+    defs + outputs
+}
+
+/// Whether `body`'s listing is over [`MAX_LISTING`].
+fn too_long(body: &Body, names: &[String]) -> bool {
+    listing_len(body, names) > MAX_LISTING
+}
+
 /// A function's doc: `summary`, its operation counts, then every intermediate and
-/// output formula.
+/// output formula (over [`MAX_LISTING`], a sentence saying where they are instead).
 pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
-    let mut s = format!(
-        "{summary}\n\nClosed form ({} operations: {} add, {} mul, {} neg; {} `sin_cos`):\n\n```text\n",
+    let head = format!(
+        "{summary}\n\nClosed form ({} operations: {} add, {} mul, {} neg; {} `sin_cos`)",
         body.ops.total(),
         body.ops.add,
         body.ops.mul,
         body.ops.neg,
         body.ops.trig
     );
+    if too_long(body, names) {
+        return format!(
+            "{head}: its {} formulas ({} KB of text, over the {} KB a doc lists) are in \
+             `FORMULAS` and `kinegen show`.",
+            body.defs.len() + body.outputs.len(),
+            listing_len(body, names).div_ceil(1024),
+            MAX_LISTING / 1024
+        );
+    }
+    let mut s = format!("{head}:\n\n```text\n");
     for (n, e) in &body.defs {
         match angle_sum_meaning(n) {
             Some(m) => {
@@ -78,6 +112,9 @@ pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
 /// frames, the Jacobians, the second order, the determinant's gradient), as `kinegen
 /// report` shows them.
 pub fn formula_doc_with_math(summary: &str, body: &Body, names: &[String]) -> String {
+    if too_long(body, names) {
+        return formula_doc(summary, body, names);
+    }
     let mut lines = Vec::new();
     for (n, e) in &body.defs {
         let mut rhs = Vec::new();
@@ -127,4 +164,43 @@ pub fn matrix_names(m: &str, rows: usize, cols: usize) -> Vec<String> {
         }
     }
     v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::emit::code::OpCount;
+
+    fn body(defs: usize) -> (Body, Vec<String>) {
+        let body = Body {
+            lets: Vec::new(),
+            outputs: vec!["t1 + c1".into()],
+            defs: (1..=defs)
+                .map(|i| (format!("t{i}"), format!("c{i} * s{i} + L{i}")))
+                .collect(),
+            ops: OpCount::default(),
+        };
+        (body, vec!["T[0][3]".into()])
+    }
+
+    #[test]
+    fn a_listing_is_shown_up_to_its_limit_and_said_beyond() {
+        // ~25 bytes a line: 2 000 lines are under 64 KB, 4 000 over.
+        let (short, names) = body(2_000);
+        assert!(listing_len(&short, &names) <= MAX_LISTING);
+        let doc = formula_doc_with_math("FK.", &short, &names);
+        assert!(doc.contains("t2000 = c2000 * s2000 + L2000"));
+        assert!(doc.contains("<math display=\"block\">"));
+
+        let (long, names) = body(4_000);
+        assert!(listing_len(&long, &names) > MAX_LISTING);
+        let doc = formula_doc_with_math("FK.", &long, &names);
+        assert!(doc.starts_with("FK.\n\nClosed form (0 operations"), "{doc}");
+        assert!(doc.contains("its 4001 formulas"), "{doc}");
+        assert!(
+            doc.contains("are in `FORMULAS` and `kinegen show`"),
+            "{doc}"
+        );
+        assert!(!doc.contains("t1 =") && !doc.contains("<math"), "{doc}");
+    }
 }
