@@ -12,8 +12,8 @@
 //!   as MathML, the singularity map, the IK solutions and a trajectory as SVG, the stats
 //!
 //! ROBOT is a TOML file (`robots/ur5.toml`), a URDF file (`arm.urdf`, with `--base`,
-//! `--tip`, `--snap`; without them the root link and the only leaf) or the name of a
-//! shipped robot (`ur5`).
+//! `--tip`, `--snap`; without them the root link and the only leaf after a moving
+//! joint) or the name of a shipped robot (`ur5`).
 //! Every command is a thin caller of `kinegen_core`; [`run`] returns the text to print,
 //! so it is testable without a process.
 

@@ -90,6 +90,34 @@ fn several_leaves_need_a_tip() {
     );
 }
 
+/// ROS-Industrial's files hang a `base` frame from `base_link` by a fixed joint: a leaf
+/// that ends no chain of joints is no tip to ask about. Two leaves after moving joints
+/// still are; a tree of fixed joints only lists them all.
+#[test]
+fn a_leaf_after_fixed_joints_only_is_not_a_tip() {
+    let base_frame = "<link name=\"frame\"/><joint name=\"j0\" type=\"fixed\"><parent link=\"base\"/><child link=\"frame\"/></joint>\n</robot>";
+    let src = arm(JOINT2).replace("</robot>", base_frame);
+    let urdf = Urdf::parse(&src, "r.urdf").unwrap();
+    let chain = urdf.chain(&Selection::default()).unwrap();
+    assert_eq!(chain.dof(), 2);
+    assert!(chain.description.contains("`b`"), "{}", chain.description);
+
+    let another = "<link name=\"c\"/><joint name=\"j3\" type=\"fixed\"><parent link=\"a\"/><child link=\"c\"/></joint>\n</robot>";
+    let src = src.replace("</robot>", another);
+    assert_eq!(
+        chain_err(&src, None, None),
+        "r.urdf:1: tip: the tree has 3 leaves, 2 of them after a moving joint; name the tip link: `b` and `c`"
+    );
+
+    let fixed = "<robot name=\"r\">\n<link name=\"base\"/><link name=\"x\"/><link name=\"y\"/>\n\
+        <joint name=\"f1\" type=\"fixed\"><parent link=\"base\"/><child link=\"x\"/></joint>\n\
+        <joint name=\"f2\" type=\"fixed\"><parent link=\"base\"/><child link=\"y\"/></joint>\n</robot>\n";
+    assert_eq!(
+        chain_err(fixed, None, None),
+        "r.urdf:1: tip: the tree has 2 leaves, name the tip link: `x` and `y`"
+    );
+}
+
 #[test]
 fn floating_planar_and_mimic_joints_on_the_chain() {
     for kind in ["floating", "planar"] {

@@ -46,7 +46,7 @@ pub const DEFAULT_SNAP: f64 = 1e-4;
 pub struct Selection {
     /// The base link (default: the root).
     pub base: Option<String>,
-    /// The tip link (default: the only leaf).
+    /// The tip link (default: the only leaf after a moving joint).
     pub tip: Option<String>,
     /// Snap tolerance (radians / metres); 0 keeps every decimal exactly.
     pub snap: f64,

@@ -366,8 +366,9 @@ impl Urdf {
         }
     }
 
-    /// The chain from `base` to `tip` (defaults: the root link, and the only leaf):
-    /// their names and the joints between them, base to tip (fixed ones included).
+    /// The chain from `base` to `tip` (defaults: the root link, and the only leaf after a
+    /// moving joint): their names and the joints between them, base to tip (fixed ones
+    /// included).
     ///
     /// Errors carry the path `base` or `tip` (the option that is wrong) and the line of
     /// the `<robot>` element, or of the link when it exists.
@@ -390,20 +391,43 @@ impl Urdf {
         };
         let tip = match tip {
             Some(t) => self.link(t, "tip")?.to_string(),
-            None => match self.leaves().as_slice() {
-                [one] => one.to_string(),
-                many => {
-                    return Err(err(
-                        "tip",
-                        self.line,
-                        format!(
-                            "the tree has {} leaves, name the tip link: {}",
-                            many.len(),
-                            quoted(many)
-                        ),
-                    ))
+            None => {
+                let leaves = self.leaves();
+                // A leaf hung from the base by fixed joints only (ROS-Industrial's `base`
+                // frame beside `base_link`) ends no chain of joints: not a tip to guess.
+                let moving: Vec<&str> = leaves
+                    .iter()
+                    .copied()
+                    .filter(|l| self.moves_below(&base, l))
+                    .collect();
+                match (leaves.as_slice(), moving.as_slice()) {
+                    ([one], _) | (_, [one]) => one.to_string(),
+                    (all, many) if !many.is_empty() && many.len() < all.len() => {
+                        return Err(err(
+                            "tip",
+                            self.line,
+                            format!(
+                                "the tree has {} leaves, {} of them after a moving joint; \
+                                 name the tip link: {}",
+                                all.len(),
+                                many.len(),
+                                quoted(many)
+                            ),
+                        ))
+                    }
+                    (all, _) => {
+                        return Err(err(
+                            "tip",
+                            self.line,
+                            format!(
+                                "the tree has {} leaves, name the tip link: {}",
+                                all.len(),
+                                quoted(all)
+                            ),
+                        ))
+                    }
                 }
-            },
+            }
         };
         let mut joints = Vec::new();
         let mut cur = tip.as_str();
@@ -425,6 +449,23 @@ impl Urdf {
         }
         joints.reverse();
         Ok((base, tip, joints))
+    }
+
+    /// Whether `leaf` is below `base` with a joint that is not fixed between them.
+    fn moves_below(&self, base: &str, leaf: &str) -> bool {
+        let mut cur = leaf;
+        let mut moves = false;
+        // The tree was checked (one parent per link, no cycle): the walk ends at the root.
+        while cur != base {
+            match self.parent_joint(cur) {
+                Some(j) => {
+                    moves |= j.kind != JointType::Fixed;
+                    cur = &j.parent;
+                }
+                None => return false,
+            }
+        }
+        moves
     }
 
     fn link_line(&self, name: &str) -> usize {

@@ -33,8 +33,8 @@ class Robot:
         task: Optional[Sequence[str]] = None,
     ) -> "Robot":
         """The chain of a URDF file from ``base`` (default: the root link) to ``tip``
-        (default: the only leaf); values within ``snap`` of an exact one are snapped;
-        ``task`` the rows an arm with fewer than six joints solves (a SCARA:
+        (default: the only leaf after a moving joint); values within ``snap`` of an exact
+        one are snapped; ``task`` the rows an arm with fewer than six joints solves (a SCARA:
         ``["x", "y", "z", "rz"]``)."""
     @staticmethod
     def from_toml(path: _Path) -> "Robot":
