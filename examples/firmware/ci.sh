@@ -4,8 +4,9 @@
 #      qemu-system-arm (Debian's apt-get, non-interactive);
 #   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32, IK; the Jaco's general
 #      6R IK and the stack it takes) and the host check;
-#      three times: the default closed-form IK, then the size-first one (feature
-#      small-ik) at opt-level "s" and at "z"; the size-first UR5 `ik`'s flash at "s"
+#      four times: the default closed-form IK, the same with feature defmt (the UR5's
+#      solutions also logged through kinegen's `defmt::Format`, decoded on the host),
+#      then the size-first one (feature small-ik) at opt-level "s" and at "z"; the size-first UR5 `ik`'s flash at "s"
 #      checked under 32 KiB (size.py);
 #   3. runs the firmware on QEMU's mps2-an386 (Cortex-M4F) with a time limit, its
 #      semihosting output piped into the host check, which compares every value with the
@@ -59,13 +60,17 @@ run() {
         cat "$out" >&2
         exit 1
     fi
-    "$check" "$out"
+    # The ELF for the check's defmt decoding (feature `defmt`; unused without it).
+    FIRMWARE_ELF="$elf" "$check" "$out"
 }
 
 # The default IK (the regular poses in lanes), then the size-first one (`small-ik`), at
 # the profile's opt-level "s" and at "z" (the size-first path of README.md, "Flash
 # size"); each bit-identical to the host built the same way, all with the same solutions.
 run lanes
+# kinegen's `defmt::Format` on the target: the same firmware logging its UR5 solutions
+# through defmt, decoded on the host with the ELF and compared (src/defmt_log.rs).
+run defmt --features defmt
 run small --features small-ik
 "$target_dir/$host/release/check" --same-ik "$outputs/lanes" "$outputs/small"
 # The size-first `ik` at the profile's opt-level "s" stays under 32 KiB (README.md,

@@ -15,6 +15,8 @@
 //! <f64|f32> <case> det <det J>
 //! <f64|f32> <case> ik <count> then per solution: <1 if exact else 0> <6 joint values>
 //!                                       (every solution of `ik(fk(q))`; f32: solved in f64)
+//! defmt <hex bytes>                     (feature `defmt`: the same solutions as defmt
+//!                                       frames, `ur5 <f64|f32> <case> <IkSolutions>`)
 //! f64 <case> jaco-q  <6 joint values>    (the Jaco's configurations, `JACO_CONFIGS`)
 //! f64 <case> jaco-ik <count> then per solution as above (general 6R, every solution)
 //! stack <function> <bytes>              (stack below the caller's, by painting)
@@ -24,6 +26,9 @@
 //! then a semihosting exit with status 0. A panic or a HardFault prints `error ...` and
 //! exits with status 1, so QEMU never keeps running.
 #![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(all(target_os = "none", feature = "defmt"))]
+mod defmt_log;
 
 #[cfg(target_os = "none")]
 mod firmware {
@@ -248,6 +253,19 @@ mod firmware {
                 "ik",
                 ik_record(&ur5_ik_f32(&r32, &pose)),
             );
+        }
+        // With `defmt`: the same solutions logged through kinegen's `defmt::Format` (the
+        // host decodes them and compares with the records above).
+        #[cfg(feature = "defmt")]
+        {
+            for (case, q) in CONFIGS.iter().enumerate() {
+                let pose = black_box(ur5_fk_f64(&r64, q));
+                defmt::println!("ur5 f64 {=usize} {}", case, ur5_ik_f64(&r64, &pose));
+                let q = to_f32(q);
+                let pose = black_box(ur5_fk_f32(&r32, &q));
+                defmt::println!("ur5 f32 {=usize} {}", case, ur5_ik_f32(&r32, &pose));
+            }
+            crate::defmt_log::print(&mut out);
         }
         // The general 6R on the Jaco: every solution, and the stack it takes.
         let jaco = black_box(KinovaJaco::default());

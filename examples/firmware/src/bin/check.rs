@@ -16,6 +16,11 @@
 //!   the exact ones; and the stack the firmware measured for it and for the UR5's `ik`,
 //!   printed (a figure must be below the painted 512 KB).
 //!
+//! - With the feature `defmt`: the firmware's `defmt` record (its UR5 `ik` solutions
+//!   logged through kinegen's `defmt::Format`), decoded with the firmware's ELF (its path
+//!   in `FIRMWARE_ELF`): one message per `ik` record, with the same count, flags and
+//!   joint values (bit for bit).
+//!
 //! Exit status 0 when everything agrees, 1 otherwise (with the differences printed).
 
 use std::collections::HashMap;
@@ -57,6 +62,8 @@ fn parse(text: &str) -> Result<Records, String> {
                 println!("firmware: CPACR = {bits:#010x} (CP10/CP11 full access: FPU on)");
             }
             ["error", ..] => return Err(format!("firmware reported: {line}")),
+            // Read by `defmt_messages` (feature `defmt`).
+            ["defmt", _] => {}
             ["stack", function, bytes] => {
                 let bytes: f64 = bytes.parse().map_err(|e| format!("`{line}`: {e}"))?;
                 let key = ("stack".to_string(), 0, function.to_string());
@@ -403,6 +410,16 @@ fn main() -> ExitCode {
     f32_err.report("f32 firmware vs f64 host (same q)");
     failures.append(&mut err_failures);
 
+    #[cfg(feature = "defmt")]
+    match defmt_messages(&text) {
+        Ok(messages) => failures.extend(defmt_check(&messages, &records)),
+        Err(e) => failures.push(format!("defmt: {e}")),
+    }
+    #[cfg(not(feature = "defmt"))]
+    if text.lines().any(|l| l.starts_with("defmt ")) {
+        failures.push("a `defmt` record, but this check was built without `defmt`".into());
+    }
+
     if failures.is_empty() {
         println!(
             "check: firmware output agrees with the host ({} UR5 and {} Jaco configurations)",
@@ -442,4 +459,109 @@ fn ik_bound(i: usize) -> f64 {
 /// entries that must match exactly: the count and the flags.
 fn is_count_or_flag(i: usize) -> bool {
     i == 0 || (i - 1).is_multiple_of(7)
+}
+
+/// The firmware's `defmt` record decoded: one message per frame, with the ELF named by
+/// `FIRMWARE_ELF` (its `.defmt` section holds the interned format strings).
+#[cfg(feature = "defmt")]
+fn defmt_messages(text: &str) -> Result<Vec<String>, String> {
+    let hex = text
+        .lines()
+        .find_map(|l| l.trim_end().strip_prefix("defmt "))
+        .ok_or("no `defmt` record in the firmware's output")?;
+    if hex.len() % 2 != 0 {
+        return Err("the `defmt` record has an odd number of hex digits".into());
+    }
+    let bytes = (0..hex.len())
+        .step_by(2)
+        .map(|i| u8::from_str_radix(&hex[i..i + 2], 16))
+        .collect::<Result<Vec<u8>, _>>()
+        .map_err(|e| format!("the `defmt` record: {e}"))?;
+    let path = std::env::var("FIRMWARE_ELF")
+        .map_err(|_| "FIRMWARE_ELF must name the firmware's ELF".to_string())?;
+    let elf = std::fs::read(&path).map_err(|e| format!("{path}: {e}"))?;
+    let table = defmt_decoder::Table::parse(&elf)
+        .map_err(|e| format!("{path}: {e}"))?
+        .ok_or_else(|| format!("{path}: no `.defmt` section"))?;
+    let mut decoder = table.new_stream_decoder();
+    decoder.received(&bytes);
+    let mut messages = Vec::new();
+    loop {
+        match decoder.decode() {
+            Ok(frame) => messages.push(frame.display_message().to_string()),
+            Err(defmt_decoder::DecodeError::UnexpectedEof) => break,
+            Err(defmt_decoder::DecodeError::Malformed) => {
+                return Err(format!(
+                    "a malformed frame after {} messages",
+                    messages.len()
+                ))
+            }
+        }
+    }
+    println!("firmware: {} defmt messages decoded", messages.len());
+    Ok(messages)
+}
+
+/// Each UR5 `ik` record's solutions as the defmt message `ur5 <scalar> <case> [IkBranch {
+/// q: [..], exact: .., .. }, ..]` prints them: count, flags and joint values equal.
+#[cfg(feature = "defmt")]
+fn defmt_check(messages: &[String], records: &Records) -> Vec<String> {
+    let mut failures = Vec::new();
+    let mut compared = 0;
+    for scalar in ["f64", "f32"] {
+        for case in 0..CONFIGS.len() {
+            let head = format!("ur5 {scalar} {case} ");
+            let Some(body) = messages.iter().find_map(|m| m.strip_prefix(&head)) else {
+                failures.push(format!("defmt: no message `{head}…`"));
+                continue;
+            };
+            let Some(want) = records.get(&(scalar.into(), case, "ik".into())) else {
+                failures.push(format!("defmt: no `{scalar} {case} ik` record"));
+                continue;
+            };
+            match defmt_solutions(body, scalar) {
+                Ok(got) if got == *want => compared += 1,
+                Ok(got) => {
+                    failures.push(format!("defmt `{head}`: {got:?}, the ik record {want:?}"))
+                }
+                Err(e) => failures.push(format!("defmt `{head}`: {e} in `{body}`")),
+            }
+        }
+    }
+    if failures.is_empty() {
+        println!("firmware: the defmt log of {compared} `ik` calls matches their records");
+        if let Some(first) = messages.first() {
+            let cut: String = first.chars().take(150).collect();
+            println!("firmware: the first reads `{cut}…`");
+        }
+    }
+    failures
+}
+
+/// `[IkBranch { q: [a, b, …], exact: true, … }, …]` as the `ik` record's numbers: the
+/// count, then per branch the exact flag and the joint values (read as `scalar`).
+#[cfg(feature = "defmt")]
+fn defmt_solutions(body: &str, scalar: &str) -> Result<Vec<f64>, String> {
+    let branches: Vec<&str> = body.split("IkBranch {").skip(1).collect();
+    let mut out = vec![branches.len() as f64];
+    for b in branches {
+        let q = b
+            .split_once("q: [")
+            .and_then(|(_, r)| r.split_once(']'))
+            .ok_or("no `q: [..]`")?
+            .0;
+        let exact = b
+            .split_once("exact: ")
+            .map(|(_, r)| r.starts_with("true"))
+            .ok_or("no `exact`")?;
+        out.push(if exact { 1.0 } else { 0.0 });
+        for v in q.split(", ") {
+            let v = match scalar {
+                "f32" => v.parse::<f32>().map(f64::from).map_err(|e| e.to_string()),
+                _ => v.parse::<f64>().map_err(|e| e.to_string()),
+            };
+            out.push(v.map_err(|e| format!("a joint value: {e}"))?);
+        }
+    }
+    Ok(out)
 }
