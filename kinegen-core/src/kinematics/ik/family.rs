@@ -113,11 +113,13 @@ pub fn plan(chain: &Chain, max_terms: usize, free: Option<usize>) -> Result<IkPl
     }
 }
 
-/// The task rows, one per joint, that give a chain without declared rows a closed form
-/// (a SCARA: its axes all along z, it solves x, y, z and rz, never a tilt), if any: the
-/// rows the planar family solves, else the tool point (3 joints), else the point and yaw.
+/// The task rows, one per joint, that give a chain without declared rows (or with all
+/// six) a closed form (a SCARA: its axes all along z, it solves x, y, z and rz, never a
+/// tilt), if any: the rows the planar family solves, else the tool point (3 joints), else
+/// the point and yaw.
 fn task_that_solves(chain: &Chain, max_terms: usize, free: Option<usize>) -> Option<Vec<TaskRow>> {
-    if chain.task.is_some() {
+    // Declared rows other than all six are the user's choice, not to second-guess.
+    if chain.task.as_ref().is_some_and(|t| t.len() != 6) {
         return None;
     }
     let kinds: Vec<JointKind> = chain.kinds().collect();
