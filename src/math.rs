@@ -122,6 +122,45 @@ fn sin_cos_pair<const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]
     ((slow & 1) << i.min(63)) | ((slow >> 1) << j.min(63))
 }
 
+/// [`sin_cos_n`] four lanes at a time in AVX2 registers, for a caller that has checked
+/// the CPU (`is_x86_feature_detected!("avx2")`) and runs in code built for AVX2 (a
+/// `#[target_feature(enable = "avx2")]` function, where this inlines): the same bits
+/// lane by lane as [`sin_cos`] and [`sin_cos_n`], twice the lanes an instruction.
+///
+/// # Safety
+/// The CPU must have AVX2.
+///
+/// ```
+/// # #[cfg(all(target_arch = "x86_64", feature = "std"))]
+/// if std::is_x86_feature_detected!("avx2") {
+///     let x = [1.0, -2.0, 0.5, 3.0, 0.0];
+///     // SAFETY: the CPU has AVX2 (checked just above).
+///     let (s, c) = unsafe { kinegen::math::sin_cos_n_avx2(x) };
+///     assert_eq!((s, c), kinegen::math::sin_cos_n(x));
+/// }
+/// ```
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+pub unsafe fn sin_cos_n_avx2<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    let (mut s, mut c) = ([0.0; N], [0.0; N]);
+    let mut slow = 0u64;
+    for i in (0..N).step_by(4) {
+        // A short last group repeats its last lane in the spare ones.
+        let lane = |l: usize| x[(i + l).min(N - 1)];
+        // SAFETY: the caller's contract: the CPU has AVX2.
+        let (sq, cq, sl) = unsafe { fdlibm::avx2::sin_cos_4([lane(0), lane(1), lane(2), lane(3)]) };
+        for l in 0..4.min(N - i) {
+            (s[i + l], c[i + l]) = (sq[l], cq[l]);
+            slow |= u64::from((sl >> l) & 1) << (i + l).min(63);
+        }
+    }
+    if slow != 0 {
+        sin_cos_lanes(&x, &mut s, &mut c, slow);
+    }
+    (s, c)
+}
+
 /// Two lanes of [`sin_cos_n`]'s fast path in plain Rust: each lane the fast path of
 /// [`sin_cos`], and the lanes it does not hold for (bit 0: lane 0, bit 1: lane 1). (On
 /// x86_64 LLVM's SLP vectoriser packed
@@ -380,6 +419,119 @@ mod fdlibm {
                 _mm_storeu_pd(co.as_mut_ptr(), _mm_castsi128_pd(_mm_xor_si128(b, sign_b)));
                 (so, co, slow)
             }
+        }
+    }
+
+    /// Four lanes in one AVX2 register: [`sse2::sin_cos_2`]'s operations in the same
+    /// order on `__m256d` (so the same bits: no fused multiply-add, no other rounding).
+    #[cfg(target_arch = "x86_64")]
+    pub mod avx2 {
+        use super::*;
+        use core::arch::x86_64::*;
+
+        /// # Safety
+        /// The CPU must have AVX2.
+        #[target_feature(enable = "avx2")]
+        #[inline]
+        pub unsafe fn sin_cos_4(x: [f64; 4]) -> ([f64; 4], [f64; 4], u32) {
+            let k = |v: f64| _mm256_set1_pd(v);
+            // SAFETY: the pointer is that of a local array of four f64.
+            let x = unsafe { _mm256_loadu_pd(x.as_ptr()) };
+            // rem_pio2_first
+            let t = _mm256_add_pd(_mm256_mul_pd(x, k(INV_PIO2)), k(TO_INT));
+            let f_n = _mm256_sub_pd(t, k(TO_INT));
+            let n = _mm256_castpd_si256(t);
+            let r = _mm256_sub_pd(x, _mm256_mul_pd(f_n, k(PIO2_1)));
+            let w = _mm256_mul_pd(f_n, k(PIO2_1T));
+            let y0 = _mm256_sub_pd(r, w);
+            let y1 = _mm256_sub_pd(_mm256_sub_pd(r, y0), w);
+            let bits = |b: u64| _mm256_castsi256_pd(_mm256_set1_epi64x(b as i64));
+            let ax = _mm256_and_pd(x, bits(ABS));
+            let power = _mm256_and_pd(x, bits(EXPONENT));
+            // Ordered comparisons, false for NaN, as SSE2's `cmpge`/`cmpeq`/`cmplt`.
+            let exact = _mm256_and_pd(
+                _mm256_and_pd(
+                    _mm256_or_pd(
+                        _mm256_cmp_pd::<_CMP_GE_OQ>(ax, k(FAST_MIN)),
+                        _mm256_cmp_pd::<_CMP_EQ_OQ>(ax, k(0.0)),
+                    ),
+                    _mm256_cmp_pd::<_CMP_LT_OQ>(ax, k(FAST_END)),
+                ),
+                _mm256_cmp_pd::<_CMP_GE_OQ>(
+                    _mm256_and_pd(y0, bits(ABS)),
+                    _mm256_mul_pd(power, k(CANCEL)),
+                ),
+            );
+            let slow = !_mm256_movemask_pd(exact) as u32 & 0b1111;
+            // k_sin(y0, y1)
+            let z = _mm256_mul_pd(y0, y0);
+            let w = _mm256_mul_pd(z, z);
+            let r = _mm256_add_pd(
+                _mm256_add_pd(
+                    k(S2),
+                    _mm256_mul_pd(z, _mm256_add_pd(k(S3), _mm256_mul_pd(z, k(S4)))),
+                ),
+                _mm256_mul_pd(
+                    _mm256_mul_pd(z, w),
+                    _mm256_add_pd(k(S5), _mm256_mul_pd(z, k(S6))),
+                ),
+            );
+            let v = _mm256_mul_pd(z, y0);
+            let inner = _mm256_sub_pd(
+                _mm256_mul_pd(
+                    z,
+                    _mm256_sub_pd(_mm256_mul_pd(k(0.5), y1), _mm256_mul_pd(v, r)),
+                ),
+                y1,
+            );
+            let s = _mm256_sub_pd(y0, _mm256_sub_pd(inner, _mm256_mul_pd(v, k(S1))));
+            // k_cos(y0, y1)
+            let r = _mm256_add_pd(
+                _mm256_mul_pd(
+                    z,
+                    _mm256_add_pd(
+                        k(C1),
+                        _mm256_mul_pd(z, _mm256_add_pd(k(C2), _mm256_mul_pd(z, k(C3)))),
+                    ),
+                ),
+                _mm256_mul_pd(
+                    _mm256_mul_pd(w, w),
+                    _mm256_add_pd(
+                        k(C4),
+                        _mm256_mul_pd(z, _mm256_add_pd(k(C5), _mm256_mul_pd(z, k(C6)))),
+                    ),
+                ),
+            );
+            let hz = _mm256_mul_pd(k(0.5), z);
+            let w = _mm256_sub_pd(k(1.0), hz);
+            let c = _mm256_add_pd(
+                w,
+                _mm256_add_pd(
+                    _mm256_sub_pd(_mm256_sub_pd(k(1.0), w), hz),
+                    _mm256_sub_pd(_mm256_mul_pd(z, r), _mm256_mul_pd(y0, y1)),
+                ),
+            );
+            // quadrant
+            let (s, c) = (_mm256_castpd_si256(s), _mm256_castpd_si256(c));
+            let (one, two) = (_mm256_set1_epi64x(1), _mm256_set1_epi64x(2));
+            let swap = _mm256_sub_epi64(_mm256_setzero_si256(), _mm256_and_si256(n, one));
+            let a = _mm256_or_si256(_mm256_andnot_si256(swap, s), _mm256_and_si256(swap, c));
+            let b = _mm256_or_si256(_mm256_andnot_si256(swap, c), _mm256_and_si256(swap, s));
+            let sign_a = _mm256_slli_epi64::<62>(_mm256_and_si256(n, two));
+            let sign_b = _mm256_slli_epi64::<62>(_mm256_and_si256(_mm256_add_epi64(n, one), two));
+            let (mut so, mut co) = ([0.0; 4], [0.0; 4]);
+            // SAFETY: the pointers are those of local arrays of four f64.
+            unsafe {
+                _mm256_storeu_pd(
+                    so.as_mut_ptr(),
+                    _mm256_castsi256_pd(_mm256_xor_si256(a, sign_a)),
+                );
+                _mm256_storeu_pd(
+                    co.as_mut_ptr(),
+                    _mm256_castsi256_pd(_mm256_xor_si256(b, sign_b)),
+                );
+            }
+            (so, co, slow)
         }
     }
 
@@ -839,6 +991,62 @@ mod tests {
         // scale 2e6 are not (beyond 2²⁰·π/2, or |x| > 2¹⁶·|y0| where fdlibm reduces
         // twice): 4 in 9 pairs of ordinary arguments expected fast (measured 45,056).
         assert!(fast_pairs > 40_000, "{fast_pairs} fast pairs");
+    }
+
+    /// The AVX2 form is `sin_cos_n` (and so `sin_cos`) bit for bit, lane by lane, on the
+    /// SSE2 pair's arguments: special values, multiples of π/2 and their neighbours,
+    /// random angles and random bit patterns, in groups of 8 and of 5 (a short last
+    /// group). Skipped on a CPU without AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn avx2_lanes_are_sin_cos_n() {
+        if !std::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let mut state = 0x0a5e_ed42u64;
+        let mut next = move || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            state.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        };
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            1e-9,
+            f64::MIN_POSITIVE,
+            1647099.0,
+            f64::NAN,
+            f64::INFINITY,
+        ];
+        for k in 1..2000 {
+            let x0 = k as f64 * core::f64::consts::FRAC_PI_2;
+            xs.extend([x0, -x0, f64::from_bits(x0.to_bits() + 1)]);
+        }
+        for _ in 0..100_000 {
+            let unit = (next() >> 11) as f64 / (1u64 << 53) as f64;
+            xs.push((2.0 * unit - 1.0) * [7.0, 1e3, 2e6][(next() % 3) as usize]);
+            xs.push(f64::from_bits(next()));
+        }
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+        let check = |x: &[f64], s: &[f64], c: &[f64]| {
+            for (k, &xk) in x.iter().enumerate() {
+                let (ws, wc) = super::sin_cos(xk);
+                assert!(same(s[k], ws) && same(c[k], wc), "{x:?} lane {k}");
+            }
+        };
+        for g in xs.chunks_exact(8) {
+            let x: [f64; 8] = g.try_into().unwrap();
+            // SAFETY: the CPU has AVX2 (checked above).
+            let (s, c) = unsafe { super::sin_cos_n_avx2(x) };
+            check(&x, &s, &c);
+        }
+        for g in xs.chunks_exact(5) {
+            let x: [f64; 5] = g.try_into().unwrap();
+            // SAFETY: as above.
+            let (s, c) = unsafe { super::sin_cos_n_avx2(x) };
+            check(&x, &s, &c);
+        }
     }
 
     /// `rem_tau` is `%` by `TAU` to the bit: random magnitudes from 2π to 2¹⁰²³, both

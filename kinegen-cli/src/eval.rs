@@ -8,6 +8,7 @@ use std::fmt::Write;
 
 use kinegen_core::algebra::graph::Id;
 use kinegen_core::kinematics::model::Model;
+use kinegen_core::kinematics::program::{Program, LANES};
 use kinegen_core::{Chain, Derived};
 use nalgebra::DMatrix;
 use serde_json::{json, Value};
@@ -344,6 +345,26 @@ fn second_order_table(s: &mut String, chain: &Chain, v: &SecondOrderValues, miss
     if let (Some(g), Some(_)) = (&v.manipulability_task_gradient, &chain.task) {
         vector(s, "manipulability_task_gradient", g);
     }
+}
+
+/// [`Program::eval_lanes`] with the sines and cosines four lanes at a time where the CPU
+/// has AVX2 ([`kinegen::math::sin_cos_n_avx2`], inlined into the program's AVX2 build),
+/// else [`kinegen::math::sin_cos_n`]: the same bits either way. What the CLI's residuals
+/// and the Python module's batches evaluate.
+pub fn eval_lanes(
+    program: &Program,
+    q: [&[f64]; LANES],
+    registers: &mut [[f64; LANES]],
+    out: &mut [[f64; LANES]],
+) {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (asked just now), so does the program's build that
+        // `eval_lanes` picks on the same question.
+        let sin_cos = |x| unsafe { kinegen::math::sin_cos_n_avx2(x) };
+        return program.eval_lanes(q, registers, out, sin_cos);
+    }
+    program.eval_lanes(q, registers, out, kinegen::math::sin_cos_n)
 }
 
 #[cfg(test)]

@@ -287,8 +287,7 @@ impl Solver {
             let len = LANES.min(count - first);
             // A short chunk repeats its last solution in the spare lanes.
             let lanes: [&[f64]; LANES] = std::array::from_fn(|l| q(first + l.min(len - 1)));
-            self.fk
-                .eval_lanes(lanes, &mut s.fk_lanes, v, kinegen::math::sin_cos_n);
+            crate::eval::eval_lanes(&self.fk, lanes, &mut s.fk_lanes, v);
             misses.extend((0..len).map(|l| {
                 let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
                 for (i, row) in t.iter_mut().take(3).enumerate() {

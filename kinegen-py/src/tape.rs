@@ -61,8 +61,7 @@ impl Tape {
             let mut lanes = vec![[0.0; LANES]; k];
             for first in (0..full).step_by(LANES) {
                 let q: [&[f64]; LANES] = core::array::from_fn(|l| vector(first + l));
-                self.program
-                    .eval_lanes(q, &mut regs, &mut lanes, kinegen::math::sin_cos_n);
+                kinegen_cli::eval::eval_lanes(&self.program, q, &mut regs, &mut lanes);
                 for l in 0..LANES {
                     row.clear();
                     row.extend(lanes.iter().map(|v| v[l]));
