@@ -36,6 +36,23 @@ fn floats(v: &Value) -> Vec<f64> {
         .collect()
 }
 
+/// A pose's result from `kinegen ik --json`: its solutions and their `exact` flags.
+fn solutions_and_flags(r: &Value) -> (Vec<Vec<f64>>, Vec<bool>) {
+    let solutions = r["solutions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(floats)
+        .collect();
+    let exact = r["exact"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b.as_bool().unwrap())
+        .collect();
+    (solutions, exact)
+}
+
 /// `max |T_a − T_b|` over the top three rows (rotation and metres alike: the robots'
 /// lengths are O(1 m)).
 fn distance(a: &nalgebra::Matrix4<f64>, b: &nalgebra::Matrix4<f64>) -> f64 {
@@ -96,18 +113,7 @@ fn every_solution_reaches_the_pose_and_the_source_is_among_them() {
         for (i, r) in results.iter().enumerate() {
             let q0 = floats(&qs[i]);
             let t0 = reference.fk(&q0).unwrap();
-            let solutions: Vec<Vec<f64>> = r["solutions"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(floats)
-                .collect();
-            let exact: Vec<bool> = r["exact"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|b| b.as_bool().unwrap())
-                .collect();
+            let (solutions, exact) = solutions_and_flags(r);
             assert!(!solutions.is_empty(), "{name} pose {i}: no solution");
             let mut found = false;
             for (q, &ex) in solutions.iter().zip(&exact) {
@@ -256,18 +262,12 @@ fn scara_urdf_solves_the_task_rows_given_on_the_command_line() {
     for (i, (r, q0)) in results.iter().zip(&qs).enumerate() {
         assert_eq!(r["family"], "planar");
         let t0 = reference.fk(q0).unwrap();
-        let solutions: Vec<Vec<f64>> = r["solutions"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(floats)
-            .collect();
-        let exact = r["exact"].as_array().unwrap();
+        let (solutions, exact) = solutions_and_flags(r);
         let mut found = false;
-        for (q, ex) in solutions.iter().zip(exact) {
+        for (q, &ex) in solutions.iter().zip(&exact) {
             let d = distance(&reference.fk(q).unwrap(), &t0);
             // The arm spans 0.6 m: 1e-12 of it, with room for a few roundings.
-            if ex.as_bool().unwrap() {
+            if ex {
                 assert!(d < 1e-12, "pose {i}: exact solution {q:?} misses by {d:e}");
             }
             found |= q.iter().zip(q0).enumerate().all(|(k, (a, b))| {
