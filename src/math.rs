@@ -424,6 +424,10 @@ mod fdlibm {
 
     /// Four lanes in one AVX2 register: [`sse2::sin_cos_2`]'s operations in the same
     /// order on `__m256d` (so the same bits: no fused multiply-add, no other rounding).
+    /// A transcription, not one body shared with the SSE2 pair: written once over each
+    /// module's lane functions, the PUMA 560's `ik`, which inlines the SSE2 pair, took
+    /// 2 % more instructions (97.3 M against 95.2 M for 20 000 calls, callgrind). The
+    /// tests hold both to [`super::sin_cos`] bit for bit.
     #[cfg(target_arch = "x86_64")]
     pub mod avx2 {
         use super::*;
