@@ -46,7 +46,7 @@ pub fn struct_doc(chain: &Chain) -> String {
 
 /// The longest formula listing a function's doc shows, in bytes of text (about a
 /// thousand lines; the longest among the shipped robots, a Kinova Gen3 method's, is
-/// ~15 KB). A longer one is left out of the doc, which says so: nobody reads tens of
+/// 6 KB). A longer one is left out of the doc, which says so: nobody reads tens of
 /// thousands of intermediates in rustdoc, every formula stays in `FORMULAS`, and printing
 /// them twice more (text and MathML) was most of what a long chain's emission printed
 /// (200 oblique joints: 15 of 21 MB of code).
