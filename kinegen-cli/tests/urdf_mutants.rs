@@ -3,8 +3,8 @@
 //! types changed, numbers made huge, tiny, negative or not numbers, odd whitespace and
 //! unicode, truncations, deep link trees — through the CLI's loader (`Urdf::parse`, then
 //! `kinegen_cli::robots::urdf_chain`, as `kinegen … robot.urdf` does). None may panic;
-//! every refusal names the file and a line; one in 5 of the mutants that still describe
-//! a chain is generated and its model compared with a numeric reference computed from
+//! every refusal names the file and a line; about one in 5 of the mutants that still
+//! describe a chain is generated and its model compared with a numeric reference computed from
 //! the parsed joints (`fuzz/src/urdf_check.rs`, the fuzz target's own oracle).
 //!
 //! Mutants come from a fixed-seed generator: every run checks the same ones.
@@ -249,22 +249,30 @@ fn sources() -> Vec<(String, String)> {
 }
 
 const MUTANTS: usize = 10_000;
-/// One in this many mutants that build a chain is generated and compared.
+/// Mutants whose index is a multiple of this, when they build a chain, are generated
+/// and compared (about one in 5 of those that build).
 const GENERATE_EVERY: usize = 5;
 const Q: [f64; 8] = [0.3, -1.1, 0.7, 2.0, -0.4, 1.3, 0.2, -2.5];
+/// The mutants are drawn in order from one generator, then checked on this many threads:
+/// which mutant is checked how depends on its index only, so the tally is the same on
+/// any machine.
+const THREADS: usize = 2;
 
-/// One mutant through the CLI's loader and the oracle.
-fn outcome(src: &str, built: &mut usize) -> UrdfOutcome {
+/// Mutant `k` through the CLI's loader and the oracle.
+fn outcome(src: &str, k: usize) -> UrdfOutcome {
     let cli = |urdf: &Urdf| match urdf_chain(urdf, &UrdfArgs::default()) {
         Ok(chain) => Ok(chain),
         Err(CliError::Load(e)) => Err(e),
         Err(CliError::Usage(m)) => panic!("a usage error without options: {m}"),
     };
-    let check = || {
-        *built += 1;
-        *built % GENERATE_EVERY == 0
-    };
-    load_and_check(src, "mutant.urdf", cli, check, &Q, false)
+    load_and_check(
+        src,
+        "mutant.urdf",
+        cli,
+        || k % GENERATE_EVERY == 0,
+        &Q,
+        false,
+    )
 }
 
 #[test]
@@ -272,31 +280,53 @@ fn ten_thousand_urdf_mutants_load_or_say_where() {
     let sources = sources();
     assert!(sources.len() >= 10, "{} URDF files", sources.len());
     let mut rng = Rng(XorShift64::new(32));
+    let mutants: Vec<(&str, String)> = (0..MUTANTS)
+        .map(|_| {
+            let (name, text) = rng.pick(&sources);
+            let mut src = text.clone();
+            for _ in 0..1 + rng.below(3) {
+                src = mutate(&src, &mut rng);
+            }
+            (name.as_str(), src)
+        })
+        .collect();
+    // Per thread: the tally, and the time spent loading and checking.
+    let run = |first: usize| {
+        let mut tally = [0usize; 4];
+        let mut times = [std::time::Duration::ZERO; 2];
+        for (k, (name, src)) in mutants.iter().enumerate().skip(first).step_by(THREADS) {
+            let start = std::time::Instant::now();
+            let result = catch_unwind(AssertUnwindSafe(|| outcome(src, k)));
+            let took = start.elapsed();
+            match result {
+                Ok(UrdfOutcome::Checked) => times[1] += took,
+                _ => times[0] += took,
+            }
+            match result {
+                Ok(o) => tally[o as usize] += 1,
+                Err(_) => panic!("mutant {k} of {name} (above):\n{src}"),
+            }
+        }
+        (tally, times)
+    };
+    let parts: Vec<_> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..THREADS).map(|t| s.spawn(move || run(t))).collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
     let mut tally = [0usize; 4];
-    let mut built = 0;
     let mut times = [std::time::Duration::ZERO; 2];
-    for k in 0..MUTANTS {
-        let (name, text) = rng.pick(&sources);
-        let mut src = text.clone();
-        for _ in 0..1 + rng.below(3) {
-            src = mutate(&src, &mut rng);
+    for (t, d) in &parts {
+        for i in 0..4 {
+            tally[i] += t[i];
         }
-        let start = std::time::Instant::now();
-        let result = catch_unwind(AssertUnwindSafe(|| outcome(&src, &mut built)));
-        let took = start.elapsed();
-        match result {
-            Ok(UrdfOutcome::Checked) => times[1] += took,
-            _ => times[0] += took,
-        }
-        match result {
-            Ok(o) => tally[o as usize] += 1,
-            Err(_) => panic!("mutant {k} of {name} (above):\n{src}"),
-        }
+        times[0] += d[0];
+        times[1] += d[1];
     }
     let [rejected, no_chain, built_only, checked] = tally;
     eprintln!(
         "{MUTANTS} mutants: {rejected} refused by the reader, {no_chain} without a chain, \
-         {built_only} built, {checked} generated and checked; {:?} loading, {:?} checking",
+         {built_only} built, {checked} generated and checked; {:?} loading, {:?} checking \
+         (CPU time over {THREADS} threads)",
         times[0], times[1]
     );
     // The mutator reaches every path: refusals of both kinds, chains, checked chains.
