@@ -64,18 +64,10 @@ impl UrdfArgs {
             return Ok(None);
         };
         let mut rows = Vec::new();
-        for name in names.iter().map(|n| n.trim()) {
-            match TaskRow::parse(name) {
-                Some(r) if rows.contains(&r) => {
-                    return Err(CliError::Usage(format!("--task: row `{name}` given twice")))
-                }
-                Some(r) => rows.push(r),
-                None => {
-                    return Err(CliError::Usage(format!(
-                        "--task: unknown row `{name}`: expected x, y, z, rx, ry or rz"
-                    )))
-                }
-            }
+        for name in names {
+            let row = TaskRow::next_in_list(name, &rows)
+                .map_err(|m| CliError::Usage(format!("--task: {m}")))?;
+            rows.push(row);
         }
         Ok(Some(rows))
     }

@@ -227,7 +227,7 @@ fn scara_urdf_solves_the_task_rows_given_on_the_command_line() {
     let e = fails(&["ik", &urdf, "--pose", rigid]);
     assert!(e.contains("--task x,y,z,rz"), "{e}");
     let e = fails(&["ik", &urdf, "--task", "x,y,w", "--pose", rigid]);
-    assert!(e.contains("--task: unknown row `w`"), "{e}");
+    assert!(e.contains("--task: unknown task row `w`"), "{e}");
     let e = fails(&["ik", &urdf, "--task", "x,y,x,rz", "--pose", rigid]);
     assert!(e.contains("twice"), "{e}");
     let e = fails(&["ik", "scara", "--task", "x,y,z,rz", "--pose", rigid]);

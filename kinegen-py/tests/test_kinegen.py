@@ -517,7 +517,7 @@ def test_scara_urdf_solves_the_task_rows_it_is_given():
     urdf = ROBOTS / "urdf" / "cobra600.urdf"
     with pytest.raises(ValueError, match="task rows \\[x, y, z, rz\\] make it solvable"):
         kinegen.Robot.from_urdf(urdf).ik(np.eye(4))
-    with pytest.raises(ValueError, match="unknown row `w`"):
+    with pytest.raises(ValueError, match="unknown task row `w`"):
         kinegen.Robot.from_urdf(urdf, task=["x", "y", "w"])
     r = kinegen.Robot.from_urdf(urdf, task=["x", "y", "z", "rz"])
     assert r.ik_family == "planar"

@@ -55,6 +55,26 @@ impl TaskRow {
     pub fn parse(s: &str) -> Option<TaskRow> {
         Self::ALL.into_iter().find(|r| r.name() == s)
     }
+
+    /// The next row of a list that has `so_far`: `name` (trimmed) parsed, or why it
+    /// cannot be one — unknown, or given twice. The TOML and macro `task` key and the
+    /// command line's `--task` read their lists through this, so they say the same.
+    ///
+    /// ```
+    /// use kinegen_core::model::robot::TaskRow;
+    /// assert_eq!(TaskRow::next_in_list(" rz", &[TaskRow::X]), Ok(TaskRow::Rz));
+    /// assert!(TaskRow::next_in_list("x", &[TaskRow::X]).unwrap_err().contains("twice"));
+    /// ```
+    pub fn next_in_list(name: &str, so_far: &[TaskRow]) -> Result<TaskRow, String> {
+        let name = name.trim();
+        match TaskRow::parse(name) {
+            Some(r) if so_far.contains(&r) => Err(format!("task row `{name}` given twice")),
+            Some(r) => Ok(r),
+            None => Err(format!(
+                "unknown task row `{name}`: expected x, y, z, rx, ry or rz"
+            )),
+        }
+    }
 }
 
 /// Floating-point type of the generated code.

@@ -462,22 +462,13 @@ impl Validator {
         }
         for (i, item) in raw.iter().enumerate() {
             let p = path.index(i);
-            let name = match item {
-                RawValue::Text(s) => s.trim().to_string(),
-                _ => {
-                    self.err(p, "a task row is one of x, y, z, rx, ry, rz");
-                    continue;
-                }
+            let RawValue::Text(name) = item else {
+                self.err(p, "a task row is one of x, y, z, rx, ry, rz");
+                continue;
             };
-            match TaskRow::parse(&name) {
-                Some(r) if out.contains(&r) => {
-                    self.err(p, format!("task row `{name}` given twice"))
-                }
-                Some(r) => out.push(r),
-                None => self.err(
-                    p,
-                    format!("unknown task row `{name}`: expected x, y, z, rx, ry or rz"),
-                ),
+            match TaskRow::next_in_list(name, &out) {
+                Ok(r) => out.push(r),
+                Err(m) => self.err(p, m),
             }
         }
         out
