@@ -63,14 +63,14 @@ fn listing_len(body: &Body, names: &[String]) -> usize {
     defs + outputs
 }
 
-/// Whether `body`'s listing is over [`MAX_LISTING`].
-fn too_long(body: &Body, names: &[String]) -> bool {
-    listing_len(body, names) > MAX_LISTING
-}
-
 /// A function's doc: `summary`, its operation counts, then every intermediate and
 /// output formula (over [`MAX_LISTING`], a sentence saying where they are instead).
 pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
+    text_doc(summary, body, names, listing_len(body, names))
+}
+
+/// [`formula_doc`] for a listing of `len` bytes (see [`listing_len`]).
+fn text_doc(summary: &str, body: &Body, names: &[String], len: usize) -> String {
     let head = format!(
         "{summary}\n\nClosed form ({} operations: {} add, {} mul, {} neg; {} `sin_cos`)",
         body.ops.total(),
@@ -79,12 +79,12 @@ pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
         body.ops.neg,
         body.ops.trig
     );
-    if too_long(body, names) {
+    if len > MAX_LISTING {
         return format!(
             "{head}: its {} formulas ({} KB of text, over the {} KB a doc lists) are in \
              `FORMULAS` and `kinegen show`.",
             body.defs.len() + body.outputs.len(),
-            listing_len(body, names).div_ceil(1024),
+            len.div_ceil(1024),
             MAX_LISTING / 1024
         );
     }
@@ -112,8 +112,9 @@ pub fn formula_doc(summary: &str, body: &Body, names: &[String]) -> String {
 /// frames, the Jacobians, the second order, the determinant's gradient), as `kinegen
 /// report` shows them.
 pub fn formula_doc_with_math(summary: &str, body: &Body, names: &[String]) -> String {
-    if too_long(body, names) {
-        return formula_doc(summary, body, names);
+    let len = listing_len(body, names);
+    if len > MAX_LISTING {
+        return text_doc(summary, body, names, len);
     }
     let mut lines = Vec::new();
     for (n, e) in &body.defs {
@@ -132,7 +133,7 @@ pub fn formula_doc_with_math(summary: &str, body: &Body, names: &[String]) -> St
         "{}
 
 {}",
-        formula_doc(summary, body, names),
+        text_doc(summary, body, names, len),
         math_block(&lines)
     )
 }
