@@ -483,6 +483,7 @@ fn self_test_counting(
         let checks = Checks {
             residual: &|x| error(x),
             singular: &|_| 0,
+            residuals: None,
         };
         let problem = DynProblem {
             plan: &plan,

@@ -72,6 +72,8 @@ pub struct Scratch {
     /// time.
     fk_lanes: Vec<[f64; LANES]>,
     lane_values: Vec<[f64; LANES]>,
+    /// Residuals measured for `finish`, reused from pose to pose.
+    misses: Vec<f64>,
 }
 
 impl Solver {
@@ -154,6 +156,7 @@ impl Solver {
             values: vec![0.0; self.fk.outputs().max(self.factors.outputs())],
             fk_lanes: self.fk.lane_registers(),
             lane_values: vec![[0.0; LANES]; self.fk.outputs()],
+            misses: Vec::new(),
         }
     }
 
@@ -215,9 +218,12 @@ impl Solver {
         &self.ik.plan.steps
     }
 
-    /// The tool pose the engine's `fk` gives at `q`.
+    /// The tool pose the engine's `fk` gives at `q`, with the sines and cosines of
+    /// generated code ([`kinegen::math::sin_cos_n`]): the bits [`Solver::measure`] gives
+    /// in lanes.
     fn fk(&self, q: &[f64], s: &mut Scratch) -> [[f64; 4]; 4] {
-        self.fk.eval(q, &mut s.fk, &mut s.values);
+        self.fk
+            .eval_with(q, &mut s.fk, &mut s.values, kinegen::math::sin_cos_n);
         let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
         for (i, row) in t.iter_mut().take(3).enumerate() {
             row.copy_from_slice(&s.values[4 * i..4 * i + 4]);
@@ -228,7 +234,9 @@ impl Solver {
     /// The singular factors' values at `q`, in the determinant's order (empty without
     /// a closed-form determinant).
     pub fn factor_values<'s>(&self, q: &[f64], s: &'s mut Scratch) -> &'s [f64] {
-        self.factors.eval(q, &mut s.factors, &mut s.values);
+        // The generated code's sines and cosines, as for fk.
+        self.factors
+            .eval_with(q, &mut s.factors, &mut s.values, kinegen::math::sin_cos_n);
         &s.values[..self.factors.outputs()]
     }
 
@@ -272,8 +280,27 @@ impl Solver {
         self.miss(&t, pose)
     }
 
+    /// The residuals of the candidates `qs` holds (joint values one vector after
+    /// another) into `out`, for `finish` ([`Checks::residuals`]): a few one by one,
+    /// more side by side in lanes — the same bits either way.
+    fn residuals_into(&self, qs: &[f64], pose: &Pose, s: &mut Scratch, out: &mut [f64]) {
+        let n = self.chain.dof();
+        let count = qs.len() / n;
+        if count < 3 {
+            for (q, o) in qs.chunks_exact(n).zip(out) {
+                *o = self.residual(q, pose, s);
+            }
+            return;
+        }
+        let mut misses = std::mem::take(&mut s.misses);
+        misses.clear();
+        self.measure(count, |i| &qs[i * n..(i + 1) * n], pose, s, &mut misses);
+        out.copy_from_slice(&misses);
+        s.misses = misses;
+    }
+
     /// The residual of each of `count` solutions (joint values `q(i)`), appended to
-    /// `misses`: four solutions are evaluated side by side by one program of fk.
+    /// `misses`: [`LANES`] solutions are evaluated side by side by one program of fk.
     fn measure<'q>(
         &self,
         count: usize,
@@ -475,9 +502,13 @@ impl Solver {
         let target = Pose::from_matrix(&pose);
         let residual = |q: &[f64]| self.residual(q, &target, &mut scratch.borrow_mut());
         let singular = |q: &[f64]| self.vanishing_bits(q, &mut scratch.borrow_mut());
+        let residuals = |qs: &[f64], out: &mut [f64]| {
+            self.residuals_into(qs, &target, &mut scratch.borrow_mut(), out)
+        };
         let checks = Checks {
             residual: &residual,
             singular: &singular,
+            residuals: Some(&residuals),
         };
         let problem = DynProblem {
             plan: &self.plan,

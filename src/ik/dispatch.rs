@@ -143,14 +143,33 @@ pub struct Checks<'a> {
     pub residual: &'a dyn Fn(&[f64]) -> f64,
     /// Bits of the singular factors vanishing at `q`.
     pub singular: &'a dyn Fn(&[f64]) -> u32,
+    /// The residuals of a pose's candidates together (their joint values one vector after
+    /// another, then where to put each residual), with the values `residual` gives each
+    /// alone; `None`: `residual` one by one.
+    pub residuals: Option<Residuals<'a>>,
 }
 
+/// [`Checks::residuals`]: joint vectors one after another in, a residual each out.
+pub type Residuals<'a> = &'a dyn Fn(&[f64], &mut [f64]);
+
 impl<const N: usize> Check<N> for Checks<'_> {
+    const BATCHED: bool = true;
+
     fn residual(&self, q: &[f64; N], _pose: &Pose) -> f64 {
         (self.residual)(q)
     }
     fn singular(&self, q: &[f64; N]) -> u32 {
         (self.singular)(q)
+    }
+    fn residuals(&self, qs: &[[f64; N]], _pose: &Pose, out: &mut [f64]) {
+        match self.residuals {
+            Some(all) => all(qs.as_flattened(), out),
+            None => {
+                for (q, o) in qs.iter().zip(out) {
+                    *o = (self.residual)(q);
+                }
+            }
+        }
     }
 }
 

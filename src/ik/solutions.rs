@@ -267,6 +267,21 @@ pub trait Check<const N: usize> {
     fn residual(&self, q: &[f64; N], pose: &Pose) -> f64;
     /// Bit `i` set when singular factor `i` vanishes at `q` (see [`vanishing`]).
     fn singular(&self, q: &[f64; N]) -> u32;
+
+    /// Whether [`finish`] asks [`Check::residuals`] once per pose, for every candidate
+    /// that needs a residual, instead of [`Check::residual`] one by one: for a checker
+    /// that evaluates several joint vectors side by side (the run-time solvers' register
+    /// programs in lanes). Generated code checks one by one, and its `finish` has no
+    /// trace of the batch.
+    const BATCHED: bool = false;
+
+    /// [`Check::residual`] of each of `qs`, into `out` (as long as `qs`), with the
+    /// values `residual` gives for each alone.
+    fn residuals(&self, qs: &[[f64; N]], pose: &Pose, out: &mut [f64]) {
+        for (q, o) in qs.iter().zip(out) {
+            *o = self.residual(q, pose);
+        }
+    }
 }
 
 /// The robot's solution set from a solver's candidates: joint values wrapped into
@@ -308,12 +323,26 @@ pub fn finish_locked<const M: usize, const N: usize, const K: usize, C: Check<N>
 /// What [`finish`] and [`finish_locked`] do, on the candidates' joint values and fits.
 #[inline(always)]
 fn finish_each<const N: usize, const K: usize, C: Check<N>>(
-    candidates: impl Iterator<Item = ([f64; N], Fit)>,
+    candidates: impl Iterator<Item = ([f64; N], Fit)> + Clone,
     pose: &Pose,
     revolute: &[bool; N],
     limits: &[[f64; 2]; N],
     check: &C,
 ) -> IkSolutions<N, K> {
+    // A batching checker measures, up front and together, the candidates the loop below
+    // will ask about, in the order it asks.
+    let mut batched = [0.0; K];
+    let mut next = 0;
+    if C::BATCHED {
+        let mut qs = [[0.0; N]; K];
+        let mut m = 0;
+        for (c_q, c_fit) in candidates.clone() {
+            if c_fit != Fit::Exact && m < K && settle(c_q, &mut qs[m], revolute, limits).is_some() {
+                m += 1;
+            }
+        }
+        check.residuals(&qs[..m], pose, &mut batched[..m]);
+    }
     let mut out = IkSolutions::empty();
     // `unchecked[i]`: solution i came from a candidate some subproblem did not solve
     // exactly.
@@ -329,7 +358,12 @@ fn finish_each<const N: usize, const K: usize, C: Check<N>>(
         let (residual, singular) = match c_fit {
             Fit::Exact => (0.0, 0),
             fit => (
-                check.residual(&q, pose),
+                if C::BATCHED && next < K {
+                    next += 1;
+                    batched[next - 1]
+                } else {
+                    check.residual(&q, pose)
+                },
                 if fit == Fit::Checked {
                     0
                 } else {
@@ -814,6 +848,55 @@ mod tests {
         let q: [[f64; 3]; 3] = core::array::from_fn(|i| locked.as_slice()[i].q);
         assert_eq!(locked.len(), 3);
         assert_eq!(q, [[0.0, 0.7, 1.0], [1e-11, 0.7, -1.5], [0.0, 0.7, 2.0]]);
+    }
+
+    /// [`FirstJoint`] asked for a pose's residuals together, recording what it was asked.
+    struct FirstJointBatched(core::cell::RefCell<([[f64; 3]; 8], usize, usize)>);
+    impl Check<3> for FirstJointBatched {
+        const BATCHED: bool = true;
+        fn residual(&self, _: &[f64; 3], _: &Pose) -> f64 {
+            panic!("a batching check is asked once per pose")
+        }
+        fn singular(&self, _: &[f64; 3]) -> u32 {
+            0
+        }
+        fn residuals(&self, qs: &[[f64; 3]], _: &Pose, out: &mut [f64]) {
+            let mut asked = self.0.borrow_mut();
+            asked.0[..qs.len()].copy_from_slice(qs);
+            asked.1 = qs.len();
+            asked.2 += 1;
+            for (q, o) in qs.iter().zip(out) {
+                *o = q[0].abs();
+            }
+        }
+    }
+
+    #[test]
+    fn a_batching_check_is_asked_once_for_the_candidates_that_need_it() {
+        // Exact candidates need no residual; a non-finite one is never a solution; the
+        // least-squares ones are asked about settled (wrapped into the limits), in order.
+        let mut c = Candidates::<3, 8>::default();
+        c.push([0.0, 1.0, 0.5], Fit::Exact);
+        c.push([1e-12, 1.0, 0.5], Fit::LeastSquares);
+        c.push([f64::NAN, 0.0, 0.0], Fit::LeastSquares);
+        c.push([0.5, -1.0, 0.0], Fit::Double);
+        c.push([1e-11, -1.5 + TAU, 0.0], Fit::Checked);
+        c.push([0.0, 2.0, 0.0], Fit::Exact);
+        let pose = Pose {
+            r: M3::identity(),
+            p: V3::zeros(),
+        };
+        let (revolute, limits) = ([true; 3], [[-PI, PI]; 3]);
+        let one_by_one = finish(&c, &pose, &revolute, &limits, &FirstJoint);
+        let batching = FirstJointBatched(Default::default());
+        let together = finish(&c, &pose, &revolute, &limits, &batching);
+        assert_eq!(together.as_slice(), one_by_one.as_slice());
+        let (asked, count, calls) = *batching.0.borrow();
+        assert_eq!((count, calls), (3, 1));
+        assert_eq!(
+            asked[..3],
+            [[1e-12, 1.0, 0.5], [0.5, -1.0, 0.0], [1e-11, -1.5, 0.0]]
+        );
     }
 
     #[test]

@@ -96,6 +96,9 @@ pub(super) struct Worker {
     /// A pose's solutions, reused from pose to pose.
     pub(super) solutions: DynSolutions,
     pub(super) measures: measures::Scratch,
+    /// A pose's solutions within the limits, one joint vector after another, measured
+    /// together.
+    pub(super) within: Vec<f64>,
 }
 
 impl Worker {
@@ -104,6 +107,7 @@ impl Worker {
             ik: RefCell::new(solver.scratch()),
             solutions: DynSolutions::default(),
             measures: measures.scratch(),
+            within: Vec::new(),
         }
     }
 }
@@ -128,6 +132,7 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
         .offset_radius(settings.grid.resolution);
     let sphere = ReachSphere::of(chain, derived);
     let k = measures.names.len();
+    let n = chain.dof();
     let grid = &settings.grid;
 
     let bar = if settings.progress {
@@ -170,19 +175,22 @@ pub fn compute(chain: &Chain, derived: &Derived, settings: &Settings) -> Result<
             let mut count = 0u32;
             // Per factor, the largest |value| among this pose's solutions.
             best.iter_mut().for_each(|b| *b = f64::NAN);
+            w.within.clear();
             for &locked in &locked_values {
                 calls += 1;
                 for q in solutions(&solver, pose, locked, &w.ik, &mut w.solutions)? {
                     count += 1;
-                    let (m, values) = measures.eval(q, &mut w.measures);
-                    // `f64::max`/`min` skip a NaN operand: NaN is "none yet".
-                    v.manipulability = v.manipulability.max(m);
-                    for ((f, b), x) in v.factor_min.iter_mut().zip(best.iter_mut()).zip(values) {
-                        *f = f.min(x.abs());
-                        *b = b.max(x.abs());
-                    }
+                    w.within.extend_from_slice(q);
                 }
             }
+            measures.eval_each(&w.within, n, &mut w.measures, |m, values| {
+                // `f64::max`/`min` skip a NaN operand: NaN is "none yet".
+                v.manipulability = v.manipulability.max(m);
+                for ((f, b), x) in v.factor_min.iter_mut().zip(best.iter_mut()).zip(values) {
+                    *f = f.min(x.abs());
+                    *b = b.max(x.abs());
+                }
+            });
             // The pose stands for itself and the `rolls − 1` rolls after it.
             if count > 0 {
                 for (f, b) in v.factor_best.iter_mut().zip(&best) {

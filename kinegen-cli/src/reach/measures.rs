@@ -2,7 +2,7 @@
 //! the determinant's singular factors that depend on the joints (`sin(q5)`, the elbow's
 //! `a2·c2 + a3·c23 + d5·s234`), all from one register program over the engine's nodes.
 
-use kinegen_core::kinematics::program::Program;
+use kinegen_core::kinematics::program::{Program, LANES};
 use kinegen_core::{Chain, Derived};
 use nalgebra::DMatrix;
 
@@ -29,7 +29,13 @@ enum Manipulability {
 pub struct Scratch {
     registers: Vec<f64>,
     out: Vec<f64>,
+    lane_registers: Vec<[f64; LANES]>,
+    lane_out: Vec<[f64; LANES]>,
 }
+
+/// Fewer solutions than this are measured one by one: the program's lanes cost about as
+/// much as [`LANES`] single runs' worth of decoding saved only when several are filled.
+const LANES_FROM: usize = 3;
 
 impl Measures {
     /// The measures of `chain`: `|det J|` from the closed-form determinant where the
@@ -75,6 +81,8 @@ impl Measures {
         Scratch {
             registers: self.program.registers(),
             out: vec![0.0; self.program.outputs()],
+            lane_registers: self.program.lane_registers(),
+            lane_out: vec![[0.0; LANES]; self.program.outputs()],
         }
     }
 
@@ -83,12 +91,48 @@ impl Measures {
         // A measure needs no last bit: the faster sine and cosine of generated code.
         self.program
             .eval_with(q, &mut s.registers, &mut s.out, kinegen::math::sin_cos_n);
+        self.read(&mut s.out)
+    }
+
+    /// [`Measures::eval`] at each of the joint vectors `qs` holds (`n` values each, one
+    /// after the other), `f` called with each one's measures in order: [`LANES`] at a
+    /// time through the program's lanes (`eval_lanes`, AVX2 sines where the CPU has it),
+    /// with the bits `eval` gives one by one.
+    pub fn eval_each(&self, qs: &[f64], n: usize, s: &mut Scratch, mut f: impl FnMut(f64, &[f64])) {
+        let count = qs.len() / n.max(1);
+        if count < LANES_FROM {
+            for q in qs.chunks_exact(n) {
+                let (m, values) = self.eval(q, s);
+                f(m, values);
+            }
+            return;
+        }
+        for start in (0..count).step_by(LANES) {
+            let filled = LANES.min(count - start);
+            // A short group repeats its last vector in the lanes left over.
+            let q = core::array::from_fn(|l| {
+                let i = start + l.min(filled - 1);
+                &qs[i * n..(i + 1) * n]
+            });
+            crate::eval::eval_lanes(&self.program, q, &mut s.lane_registers, &mut s.lane_out);
+            for l in 0..filled {
+                for (o, lanes) in s.out.iter_mut().zip(&s.lane_out) {
+                    *o = lanes[l];
+                }
+                let (m, values) = self.read(&mut s.out);
+                f(m, values);
+            }
+        }
+    }
+
+    /// The manipulability and the factors' values from the program's outputs.
+    fn read<'s>(&self, out: &'s mut [f64]) -> (f64, &'s [f64]) {
         match self.manipulability {
-            Manipulability::Det => (s.out[0].abs(), &s.out[1..]),
+            Manipulability::Det => (out[0].abs(), &out[1..]),
             Manipulability::Rows(rows, n) => {
-                let j = DMatrix::from_row_slice(rows, n, &s.out[..rows * n]);
+                let j = DMatrix::from_row_slice(rows, n, &out[..rows * n]);
                 let w = (&j * j.transpose()).determinant().max(0.0).sqrt();
-                (w, &s.out[rows * n..])
+                (w, &out[rows * n..])
             }
         }
     }
