@@ -47,6 +47,7 @@ pub fn placements(
     check_resolution(step)?;
     let solver = Solver::new(chain, derived)?;
     let measures = Measures::of(chain, derived);
+    let n = chain.dof();
     let locked = locked_values(&solver, free_samples);
     // The square: the task's extent widened by the arm's reach (2 m without a bound).
     let reach = ReachSphere::of(chain, derived).map_or(2.0, |s| s.radius);
@@ -87,12 +88,16 @@ pub fn placements(
                             pose[k][3] -= b[k];
                         }
                         let mut best: f64 = -1.0;
+                        w.within.clear();
                         for &l in &locked {
                             for q in solutions(&solver, pose, l, &w.ik, &mut w.solutions)? {
                                 count += 1;
-                                best = best.max(measures.eval(q, &mut w.measures).0);
+                                w.within.extend_from_slice(q);
                             }
                         }
+                        measures.eval_each(&w.within, n, &mut w.measures, |m, _| {
+                            best = best.max(m);
+                        });
                         if best < 0.0 {
                             return Ok(None);
                         }

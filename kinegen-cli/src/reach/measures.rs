@@ -87,7 +87,7 @@ impl Measures {
     }
 
     /// The manipulability at `q` and the factors' values.
-    pub fn eval<'s>(&self, q: &[f64], s: &'s mut Scratch) -> (f64, &'s [f64]) {
+    fn eval<'s>(&self, q: &[f64], s: &'s mut Scratch) -> (f64, &'s [f64]) {
         // A measure needs no last bit: the faster sine and cosine of generated code.
         self.program
             .eval_with(q, &mut s.registers, &mut s.out, kinegen::math::sin_cos_n);
