@@ -333,7 +333,8 @@ fn finish_each<const N: usize, const K: usize, C: Check<N>>(
     // will ask about, in the order it asks.
     let mut batched = [0.0; K];
     let mut next = 0;
-    if C::BATCHED {
+    // (Most poses' candidates are all exact: nothing to measure, nothing set up.)
+    if C::BATCHED && candidates.clone().any(|(_, fit)| fit != Fit::Exact) {
         let mut qs = [[0.0; N]; K];
         let mut m = 0;
         for (c_q, c_fit) in candidates.clone() {
