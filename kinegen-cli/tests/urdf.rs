@@ -124,6 +124,55 @@ fn show_model_lists_the_chain_and_every_snap() {
     assert!(stdout(&["show", "ur5", "--what", "model"]).contains("none:"));
 }
 
+/// The Panda's file ends in a hand with a TCP frame and two prismatic fingers: the arm
+/// ends at the TCP without `--tip`, and its closed-form IK answers a pose of that frame.
+#[test]
+fn the_pandas_tip_is_its_hand_tcp() {
+    let panda = urdf("panda.urdf");
+    let model = stdout(&["show", &panda, "--what", "model"]);
+    assert!(
+        model
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with("`panda_link0` → `panda_hand_tcp`"),
+        "{model}"
+    );
+    let q = "0.3,-0.5,0.2,-2.0,0.4,1.6,0.7";
+    let t: Value = serde_json::from_str(&stdout(&["eval", &panda, "--q", q, "--json"])).unwrap();
+    let pose: Vec<String> = t["fk"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string()))
+        .collect();
+    let out: Value = serde_json::from_str(&stdout(&[
+        "ik",
+        &panda,
+        "--pose",
+        &pose.join(","),
+        "--locked",
+        "0.7",
+        "--json",
+    ]))
+    .unwrap();
+    let q: Vec<f64> = q.split(',').map(|x| x.parse().unwrap()).collect();
+    let exact = out["exact"].as_array().unwrap();
+    let found = out["solutions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(exact)
+        .any(|(x, e)| {
+            let x = x.as_array().unwrap();
+            *e == true
+                && x.iter()
+                    .zip(&q)
+                    .all(|(a, b)| (a.as_f64().unwrap() - b).abs() < 1e-9)
+        });
+    assert!(found, "{out}");
+}
+
 #[test]
 fn several_leaves_and_unknown_links_exit_2_with_the_line() {
     let ur5 = urdf("ur5.urdf");

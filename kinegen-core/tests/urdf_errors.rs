@@ -244,3 +244,37 @@ fn bad_options() {
         "{e}"
     );
 }
+
+/// A parallel gripper (the Panda's hand): a TCP frame and two fingers on prismatic joints
+/// after the arm's last joint. The arm ends at the TCP without `tip`; one finger, or
+/// fingers on revolute joints (a tool past a sensor's frame), are asked about.
+#[test]
+fn a_parallel_grippers_fingers_are_not_the_tip() {
+    let hand = |kind: &str, fingers: usize| {
+        let mut s = String::from(
+            "<link name=\"tcp\"/><joint name=\"t\" type=\"fixed\"><parent link=\"b\"/><child link=\"tcp\"/></joint>\n",
+        );
+        for f in 1..=fingers {
+            s += &format!(
+                "<link name=\"f{f}\"/><joint name=\"jf{f}\" type=\"{kind}\"><parent link=\"b\"/><child link=\"f{f}\"/><axis xyz=\"0 1 0\"/><limit lower=\"0\" upper=\"0.04\" effort=\"1\" velocity=\"1\"/></joint>\n"
+            );
+        }
+        arm(JOINT2).replace("</robot>", &(s + "</robot>"))
+    };
+    let urdf = Urdf::parse(&hand("prismatic", 2), "r.urdf").unwrap();
+    let chain = urdf.chain(&Selection::default()).unwrap();
+    assert_eq!(chain.dof(), 2);
+    assert!(
+        chain.description.ends_with("`base` → `tcp`"),
+        "{}",
+        chain.description
+    );
+    assert_eq!(
+        chain_err(&hand("prismatic", 1), None, None),
+        "r.urdf:1: tip: the tree has 2 leaves, name the tip link: `tcp` and `f1`"
+    );
+    assert_eq!(
+        chain_err(&hand("revolute", 2), None, None),
+        "r.urdf:1: tip: the tree has 3 leaves, name the tip link: `tcp`, `f1` and `f2`"
+    );
+}

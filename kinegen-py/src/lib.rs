@@ -351,9 +351,10 @@ fn manipulability(inner: &Inner, q: &[f64], regs: &mut Vec<f64>) -> f64 {
 #[pymethods]
 impl Robot {
     /// A chain of a URDF file: from `base` (default: the root link) to `tip` (default:
-    /// the only leaf after a moving joint); angles within `snap` rad of a multiple of pi/12
-    /// and lengths within `snap` m of 0 are taken exact (0 keeps every decimal); `symbolic`
-    /// names every length;
+    /// the only leaf after a moving joint, or the one before a parallel gripper's
+    /// fingers); angles within `snap` rad of a multiple of pi/12 and lengths within
+    /// `snap` m of 0 are taken exact (0 keeps every decimal); `symbolic` names every
+    /// length;
     /// `task` the rows an arm with fewer than six joints solves (`["x", "y", "z", "rz"]`
     /// for a SCARA).
     #[staticmethod]

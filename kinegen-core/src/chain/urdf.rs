@@ -46,7 +46,9 @@ pub const DEFAULT_SNAP: f64 = 1e-4;
 pub struct Selection {
     /// The base link (default: the root).
     pub base: Option<String>,
-    /// The tip link (default: the only leaf after a moving joint).
+    /// The tip link (default: the only leaf after a moving joint, or the one before a
+    /// parallel gripper's prismatic fingers, see
+    /// [`Urdf::path`](crate::front::urdf::Urdf::path)).
     pub tip: Option<String>,
     /// Snap tolerance (radians / metres); 0 keeps every decimal exactly.
     pub snap: f64,

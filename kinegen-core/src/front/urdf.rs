@@ -367,8 +367,9 @@ impl Urdf {
     }
 
     /// The chain from `base` to `tip` (defaults: the root link, and the only leaf after a
-    /// moving joint): their names and the joints between them, base to tip (fixed ones
-    /// included).
+    /// moving joint — or, with a parallel gripper, the leaf whose moving joints each of
+    /// the two or more others has, with prismatic fingers after them): their names and the joints between them, base
+    /// to tip (fixed ones included).
     ///
     /// Errors carry the path `base` or `tip` (the option that is wrong) and the line of
     /// the `<robot>` element, or of the link when it exists.
@@ -395,14 +396,40 @@ impl Urdf {
                 let leaves = self.leaves();
                 // A leaf hung from the base by fixed joints only (ROS-Industrial's `base`
                 // frame beside `base_link`) ends no chain of joints: not a tip to guess.
-                let moving: Vec<&str> = leaves
+                let moving: Vec<(&str, Vec<&Joint>)> = leaves
                     .iter()
-                    .copied()
-                    .filter(|l| self.moves_below(&base, l))
+                    .map(|&l| (l, self.moving_joints(&base, l)))
+                    .filter(|(_, js)| !js.is_empty())
                     .collect();
-                match (leaves.as_slice(), moving.as_slice()) {
-                    ([one], _) | (_, [one]) => one.to_string(),
-                    (all, many) if !many.is_empty() && many.len() < all.len() => {
+                // A parallel gripper's fingers (the Panda's): two or more leaves, each with
+                // the moving joints of one other leaf (the hand's TCP) and prismatic ones
+                // after them. That leaf ends the arm. (A single leaf beyond, or a revolute
+                // joint beyond — a tool past a sensor's frame on the wrist — is no
+                // gripper: asked, not guessed.)
+                let fingers_of = |js: &[&Joint]| {
+                    moving
+                        .iter()
+                        .filter(|(_, ks)| {
+                            ks.len() > js.len()
+                                && ks[..js.len()]
+                                    .iter()
+                                    .zip(js)
+                                    .all(|(k, j)| core::ptr::eq(*k, *j))
+                                && ks[js.len()..]
+                                    .iter()
+                                    .all(|k| k.kind == JointType::Prismatic)
+                        })
+                        .count()
+                };
+                let arm: Vec<&str> = moving
+                    .iter()
+                    .filter(|(_, js)| fingers_of(js) >= 2 && fingers_of(js) + 1 == moving.len())
+                    .map(|(l, _)| *l)
+                    .collect();
+                let moving: Vec<&str> = moving.iter().map(|(l, _)| *l).collect();
+                match (leaves.as_slice(), moving.as_slice(), arm.as_slice()) {
+                    ([one], _, _) | (_, [one], _) | (_, _, [one]) => one.to_string(),
+                    (all, many, _) if !many.is_empty() && many.len() < all.len() => {
                         return Err(err(
                             "tip",
                             self.line,
@@ -415,7 +442,7 @@ impl Urdf {
                             ),
                         ))
                     }
-                    (all, _) => {
+                    (all, _, _) => {
                         return Err(err(
                             "tip",
                             self.line,
@@ -451,21 +478,25 @@ impl Urdf {
         Ok((base, tip, joints))
     }
 
-    /// Whether `leaf` is below `base` with a joint that is not fixed between them.
-    fn moves_below(&self, base: &str, leaf: &str) -> bool {
+    /// The joints that are not fixed between `base` and `leaf`, base to leaf (none when
+    /// `leaf` is not below `base`).
+    fn moving_joints<'a>(&'a self, base: &str, leaf: &'a str) -> Vec<&'a Joint> {
         let mut cur = leaf;
-        let mut moves = false;
+        let mut moving = Vec::new();
         // The tree was checked (one parent per link, no cycle): the walk ends at the root.
         while cur != base {
             match self.parent_joint(cur) {
                 Some(j) => {
-                    moves |= j.kind != JointType::Fixed;
+                    if j.kind != JointType::Fixed {
+                        moving.push(j);
+                    }
                     cur = &j.parent;
                 }
-                None => return false,
+                None => return Vec::new(),
             }
         }
-        moves
+        moving.reverse();
+        moving
     }
 
     fn link_line(&self, name: &str) -> usize {

@@ -33,9 +33,10 @@ class Robot:
         task: Optional[Sequence[str]] = None,
     ) -> "Robot":
         """The chain of a URDF file from ``base`` (default: the root link) to ``tip``
-        (default: the only leaf after a moving joint); values within ``snap`` of an exact
-        one are snapped; ``task`` the rows an arm with fewer than six joints solves (a SCARA:
-        ``["x", "y", "z", "rz"]``)."""
+        (default: the only leaf after a moving joint, or the one before a parallel
+        gripper's fingers); values within ``snap`` of an exact one are snapped; ``task``
+        the rows an arm with fewer than six joints solves (a SCARA: ``["x", "y", "z",
+        "rz"]``)."""
     @staticmethod
     def from_toml(path: _Path) -> "Robot":
         """A robot file in kinegen's TOML format."""
