@@ -68,8 +68,8 @@ pub struct Scratch {
     fk: Vec<f64>,
     factors: Vec<f64>,
     values: Vec<f64>,
-    /// Lane registers and outputs of `fk` measuring the solutions' residuals, four at a
-    /// time.
+    /// Lane registers and outputs of `fk` measuring the solutions' residuals, [`LANES`]
+    /// at a time.
     fk_lanes: Vec<[f64; LANES]>,
     lane_values: Vec<[f64; LANES]>,
     /// Residuals measured for `finish`, reused from pose to pose.

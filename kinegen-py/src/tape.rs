@@ -38,7 +38,7 @@ impl Tape {
 
     /// Append the outputs of each of `rows` joint vectors (`n` values each, one after
     /// the other in `q`) to `out`, row after row, each laid out by `layout` (`None`: as
-    /// they are): four at a time side by side, the rest one by one, with the same bits
+    /// they are): `LANES` at a time side by side, the rest one by one, with the same bits
     /// either way.
     pub fn eval_rows(
         &self,
