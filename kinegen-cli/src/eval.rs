@@ -347,6 +347,10 @@ fn second_order_table(s: &mut String, chain: &Chain, v: &SecondOrderValues, miss
     }
 }
 
+/// Fewer joint vectors than this are evaluated one by one ([`Program::eval_with`]): one
+/// run of the program's [`LANES`] costs more than one or two single runs.
+pub const LANES_FROM: usize = 3;
+
 /// [`Program::eval_lanes`] with the sines and cosines four lanes at a time where the CPU
 /// has AVX2 ([`kinegen::math::sin_cos_n_avx2`], inlined into the program's AVX2 build),
 /// else [`kinegen::math::sin_cos_n`]: the same bits either way. What the CLI's residuals

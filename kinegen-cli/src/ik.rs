@@ -286,7 +286,7 @@ impl Solver {
     fn residuals_into(&self, qs: &[f64], pose: &Pose, s: &mut Scratch, out: &mut [f64]) {
         let n = self.chain.dof();
         let count = qs.len() / n;
-        if count < 3 {
+        if count < crate::eval::LANES_FROM {
             for (q, o) in qs.chunks_exact(n).zip(out) {
                 *o = self.residual(q, pose, s);
             }

@@ -31,7 +31,8 @@ pub struct UrdfArgs {
     /// URDF: the base link (default: the root link).
     #[arg(long)]
     pub base: Option<String>,
-    /// URDF: the tip link (default: the only leaf after a moving joint, or the one before a parallel gripper's fingers).
+    /// URDF: the tip link (default: the only leaf after a moving joint, or the one before
+    /// a parallel gripper's fingers).
     #[arg(long)]
     pub tip: Option<String>,
     /// URDF: snap angles within this many radians of a multiple of π/12, and lengths

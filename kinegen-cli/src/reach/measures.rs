@@ -2,6 +2,7 @@
 //! the determinant's singular factors that depend on the joints (`sin(q5)`, the elbow's
 //! `a2·c2 + a3·c23 + d5·s234`), all from one register program over the engine's nodes.
 
+use crate::eval::LANES_FROM;
 use kinegen_core::kinematics::program::{Program, LANES};
 use kinegen_core::{Chain, Derived};
 use nalgebra::DMatrix;
@@ -32,10 +33,6 @@ pub struct Scratch {
     lane_registers: Vec<[f64; LANES]>,
     lane_out: Vec<[f64; LANES]>,
 }
-
-/// Fewer solutions than this are measured one by one: the program's lanes cost about as
-/// much as [`LANES`] single runs' worth of decoding saved only when several are filled.
-const LANES_FROM: usize = 3;
 
 impl Measures {
     /// The measures of `chain`: `|det J|` from the closed-form determinant where the

@@ -368,8 +368,8 @@ impl Urdf {
 
     /// The chain from `base` to `tip` (defaults: the root link, and the only leaf after a
     /// moving joint — or, with a parallel gripper, the leaf whose moving joints each of
-    /// the two or more others has, with prismatic fingers after them): their names and the joints between them, base
-    /// to tip (fixed ones included).
+    /// the two or more others has, with prismatic fingers after them): their names and
+    /// the joints between them, base to tip (fixed ones included).
     ///
     /// Errors carry the path `base` or `tip` (the option that is wrong) and the line of
     /// the `<robot>` element, or of the link when it exists.
