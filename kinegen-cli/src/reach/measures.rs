@@ -91,10 +91,10 @@ impl Measures {
         self.read(&mut s.out)
     }
 
-    /// [`Measures::eval`] at each of the joint vectors `qs` holds (`n` values each, one
-    /// after the other), `f` called with each one's measures in order: [`LANES`] at a
-    /// time through the program's lanes (`eval_lanes`, AVX2 sines where the CPU has it),
-    /// with the bits `eval` gives one by one.
+    /// The manipulability and the factors' values at each of the joint vectors `qs`
+    /// holds (`n` values each, one after the other), `f` called with each one's in order:
+    /// [`LANES`] at a time through the program's lanes (`eval_lanes`, AVX2 sines where
+    /// the CPU has it), with the bits one run per vector gives.
     pub fn eval_each(&self, qs: &[f64], n: usize, s: &mut Scratch, mut f: impl FnMut(f64, &[f64])) {
         let count = qs.len() / n.max(1);
         if count < LANES_FROM {
