@@ -73,7 +73,7 @@ impl Measures {
         self.program.reads_joint(j)
     }
 
-    /// Registers for [`Measures::eval`].
+    /// Registers for [`Measures::eval_each`].
     pub fn scratch(&self) -> Scratch {
         Scratch {
             registers: self.program.registers(),
