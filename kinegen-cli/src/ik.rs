@@ -72,8 +72,6 @@ pub struct Scratch {
     /// at a time.
     fk_lanes: Vec<[f64; LANES]>,
     lane_values: Vec<[f64; LANES]>,
-    /// Residuals measured for `finish`, reused from pose to pose.
-    misses: Vec<f64>,
 }
 
 impl Solver {
@@ -156,7 +154,6 @@ impl Solver {
             values: vec![0.0; self.fk.outputs().max(self.factors.outputs())],
             fk_lanes: self.fk.lane_registers(),
             lane_values: vec![[0.0; LANES]; self.fk.outputs()],
-            misses: Vec::new(),
         }
     }
 
@@ -292,39 +289,32 @@ impl Solver {
             }
             return;
         }
-        let mut misses = std::mem::take(&mut s.misses);
-        misses.clear();
-        self.measure(count, |i| &qs[i * n..(i + 1) * n], pose, s, &mut misses);
-        out.copy_from_slice(&misses);
-        s.misses = misses;
+        self.measure(count, |i| &qs[i * n..(i + 1) * n], pose, s, out);
     }
 
-    /// The residual of each of `count` solutions (joint values `q(i)`), appended to
-    /// `misses`: [`LANES`] solutions are evaluated side by side by one program of fk.
+    /// The residual of each of `count` solutions (joint values `q(i)`) into `misses`
+    /// (as long): [`LANES`] solutions are evaluated side by side by one program of fk.
     fn measure<'q>(
         &self,
         count: usize,
         q: impl Fn(usize) -> &'q [f64],
         pose: &Pose,
         s: &mut Scratch,
-        misses: &mut Vec<f64>,
+        misses: &mut [f64],
     ) {
-        let v = &mut s.lane_values;
-        for first in (0..count).step_by(LANES) {
-            let len = LANES.min(count - first);
-            // A short chunk repeats its last solution in the spare lanes.
-            let lanes: [&[f64]; LANES] = std::array::from_fn(|l| q(first + l.min(len - 1)));
-            crate::eval::eval_lanes(&self.fk, lanes, &mut s.fk_lanes, v);
-            misses.extend((0..len).map(|l| {
-                let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
-                for (i, row) in t.iter_mut().take(3).enumerate() {
-                    for (j, x) in row.iter_mut().enumerate() {
-                        *x = v[4 * i + j][l];
-                    }
+        let mut next = misses.iter_mut();
+        let (registers, v) = (&mut s.fk_lanes, &mut s.lane_values);
+        crate::eval::eval_groups(&self.fk, count, q, registers, v, |l, v| {
+            let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+            for (i, row) in t.iter_mut().take(3).enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x = v[4 * i + j][l];
                 }
-                self.miss(&t, pose)
-            }));
-        }
+            }
+            if let Some(m) = next.next() {
+                *m = self.miss(&t, pose);
+            }
+        });
     }
 
     /// Every solution of `pose`; with `near`, also the nearest to it (its free joints
@@ -450,6 +440,7 @@ impl Solver {
         }
         let target = Pose::from_matrix(&pose);
         let sols = &*solutions;
+        misses.resize(sols.len(), 0.0);
         self.measure(
             sols.len(),
             |i| sols.q(i),

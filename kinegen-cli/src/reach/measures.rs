@@ -104,22 +104,20 @@ impl Measures {
             }
             return;
         }
-        for start in (0..count).step_by(LANES) {
-            let filled = LANES.min(count - start);
-            // A short group repeats its last vector in the lanes left over.
-            let q = core::array::from_fn(|l| {
-                let i = start + l.min(filled - 1);
-                &qs[i * n..(i + 1) * n]
-            });
-            crate::eval::eval_lanes(&self.program, q, &mut s.lane_registers, &mut s.lane_out);
-            for l in 0..filled {
-                for (o, lanes) in s.out.iter_mut().zip(&s.lane_out) {
-                    *o = lanes[l];
-                }
-                let (m, values) = self.read(&mut s.out);
-                f(m, values);
+        let Scratch {
+            out,
+            lane_registers,
+            lane_out,
+            ..
+        } = s;
+        let q = |i: usize| &qs[i * n..(i + 1) * n];
+        crate::eval::eval_groups(&self.program, count, q, lane_registers, lane_out, |l, v| {
+            for (o, lanes) in out.iter_mut().zip(v) {
+                *o = lanes[l];
             }
-        }
+            let (m, values) = self.read(out);
+            f(m, values);
+        });
     }
 
     /// The manipulability and the factors' values from the program's outputs.
