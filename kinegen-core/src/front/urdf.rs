@@ -421,9 +421,10 @@ impl Urdf {
                         })
                         .count()
                 };
+                // Every other leaf a finger, and two of them at least.
                 let arm: Vec<&str> = moving
                     .iter()
-                    .filter(|(_, js)| fingers_of(js) >= 2 && fingers_of(js) + 1 == moving.len())
+                    .filter(|(_, js)| moving.len() >= 3 && fingers_of(js) + 1 == moving.len())
                     .map(|(l, _)| *l)
                     .collect();
                 let moving: Vec<&str> = moving.iter().map(|(l, _)| *l).collect();
