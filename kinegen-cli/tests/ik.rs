@@ -12,7 +12,7 @@ use kinegen_core::numeric::NumericRobot;
 use serde_json::Value;
 
 mod common;
-use common::{fails, robot_file, stdout};
+use common::{fails, floats, robot_file, solutions_and_flags, stdout};
 
 fn tmp(name: &str, value: &Value) -> PathBuf {
     let path = std::env::temp_dir().join(format!("kinegen-ik-{}-{name}.json", std::process::id()));
@@ -26,31 +26,6 @@ fn pose_json(t: &nalgebra::Matrix4<f64>) -> Value {
             .map(|r| (0..4).map(|c| t[(r, c)]).collect::<Vec<_>>())
             .collect::<Vec<_>>(),
     )
-}
-
-fn floats(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
-
-/// A pose's result from `kinegen ik --json`: its solutions and their `exact` flags.
-fn solutions_and_flags(r: &Value) -> (Vec<Vec<f64>>, Vec<bool>) {
-    let solutions = r["solutions"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(floats)
-        .collect();
-    let exact = r["exact"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|b| b.as_bool().unwrap())
-        .collect();
-    (solutions, exact)
 }
 
 /// `max |T_a − T_b|` over the top three rows (rotation and metres alike: the robots'

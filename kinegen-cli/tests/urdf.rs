@@ -7,6 +7,9 @@ use std::path::PathBuf;
 use assert_cmd::Command;
 use serde_json::Value;
 
+mod common;
+use common::solutions_and_flags;
+
 fn kinegen() -> Command {
     Command::cargo_bin("kinegen").unwrap()
 }
@@ -157,19 +160,11 @@ fn the_pandas_tip_is_its_hand_tcp() {
     ]))
     .unwrap();
     let q: Vec<f64> = q.split(',').map(|x| x.parse().unwrap()).collect();
-    let exact = out["exact"].as_array().unwrap();
-    let found = out["solutions"]
-        .as_array()
-        .unwrap()
+    let (solutions, exact) = solutions_and_flags(&out);
+    let found = solutions
         .iter()
         .zip(exact)
-        .any(|(x, e)| {
-            let x = x.as_array().unwrap();
-            *e == true
-                && x.iter()
-                    .zip(&q)
-                    .all(|(a, b)| (a.as_f64().unwrap() - b).abs() < 1e-9)
-        });
+        .any(|(x, e)| e && x.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
     assert!(found, "{out}");
 }
 

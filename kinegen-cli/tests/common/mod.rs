@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use assert_cmd::Command;
+use serde_json::Value;
 
 /// The `kinegen` binary of this build.
 pub fn kinegen() -> Command {
@@ -45,4 +46,30 @@ pub fn fails(args: &[&str]) -> String {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.starts_with("kinegen: error: "), "{err}");
     err
+}
+
+/// A JSON array of numbers.
+pub fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// A pose's result from `kinegen ik --json`: its solutions and their `exact` flags.
+pub fn solutions_and_flags(r: &Value) -> (Vec<Vec<f64>>, Vec<bool>) {
+    let solutions = r["solutions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(floats)
+        .collect();
+    let exact = r["exact"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b.as_bool().unwrap())
+        .collect();
+    (solutions, exact)
 }
