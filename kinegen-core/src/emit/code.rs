@@ -491,6 +491,9 @@ pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Pol
                 }
             }
             runs = longer;
+            if runs.is_empty() {
+                break;
+            }
         }
     }
     for (p, name) in differences {

@@ -153,6 +153,12 @@ pub struct Urdf {
     pub joints: Vec<Joint>,
     /// Line of the `<robot>` element.
     pub line: usize,
+    /// Each child link's joint (index into `joints`; the first where a link has two
+    /// parents, which is an error): walks up the tree take one look per link, so a long
+    /// chain loads in linear time, not cubic (2 000 joints: 2.5 s before).
+    parent_of: BTreeMap<String, usize>,
+    /// Links that are some joint's parent.
+    parents: BTreeSet<String>,
 }
 
 /// Errors of one file, collected in file order.
@@ -225,6 +231,8 @@ impl Urdf {
             links: Vec::new(),
             joints: Vec::new(),
             line: line(root),
+            parent_of: BTreeMap::new(),
+            parents: BTreeSet::new(),
         };
         for el in root.children().filter(Node::is_element) {
             if el
@@ -247,6 +255,10 @@ impl Urdf {
                 _ => {}
             }
         }
+        for (i, j) in urdf.joints.iter().enumerate() {
+            urdf.parent_of.entry(j.child.clone()).or_insert(i);
+            urdf.parents.insert(j.parent.clone());
+        }
         urdf.check_tree(&mut errors);
         if errors.list.is_empty() {
             Ok(urdf)
@@ -259,7 +271,7 @@ impl Urdf {
     }
 
     fn parent_joint(&self, link: &str) -> Option<&Joint> {
-        self.joints.iter().find(|j| j.child == link)
+        self.parent_of.get(link).map(|&i| &self.joints[i])
     }
 
     /// Links that are no joint's child.
@@ -276,7 +288,7 @@ impl Urdf {
         self.links
             .iter()
             .map(|(n, _)| n.as_str())
-            .filter(|n| !self.joints.iter().any(|j| j.parent == *n))
+            .filter(|n| !self.parents.contains(*n))
             .collect()
     }
 
@@ -343,15 +355,21 @@ impl Urdf {
         }
     }
 
-    /// Every link reaches a root through its parents.
+    /// Every link reaches a root through its parents. Each walk up stops at a link an
+    /// earlier walk showed to reach one, so every link is passed once.
     fn check_cycles(&self, errors: &mut Errors) {
+        let mut rooted: BTreeSet<&str> = BTreeSet::new();
+        let mut walk: Vec<&str> = Vec::new();
         for (link, _) in &self.links {
+            walk.clear();
             let mut cur = link.as_str();
-            let mut steps = 0;
-            while let Some(j) = self.parent_joint(cur) {
+            while !rooted.contains(cur) {
+                let Some(j) = self.parent_joint(cur) else {
+                    break;
+                };
+                walk.push(cur);
                 cur = &j.parent;
-                steps += 1;
-                if steps > self.joints.len() {
+                if walk.len() > self.joints.len() {
                     errors.at(
                         j.line,
                         Path::root().key(&j.name),
@@ -363,6 +381,8 @@ impl Urdf {
                     return;
                 }
             }
+            rooted.insert(cur);
+            rooted.extend(walk.iter().copied());
         }
     }
 
