@@ -5,7 +5,9 @@
 //! Gauss–Newton steps on `fk` itself (damped: at a singular pose the Jacobian is singular
 //! too); a step that lands worse is retried shorter from the best iterate (across the
 //! fold of a singular solution a full step overshoots); the best iterate is kept, and
-//! `finish` checks it like any other.
+//! `finish` checks it like any other. Where even that stalls (beside a close pair of
+//! solutions, whose Jacobian is nearly singular), [`levenberg_marquardt`]'s adaptive
+//! damping still converges.
 
 use super::geometry::{Geometry, Pose, V3};
 use super::subproblems::Fit;
@@ -60,6 +62,54 @@ pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
         q = step_from(&q, &step, 1.0);
     }
     best
+}
+
+/// Levenberg–Marquardt on `fk` from `q` towards `pose`, for up to `rounds` steps: where
+/// [`polish`]'s Gauss–Newton steps stall — near a solution whose Jacobian is nearly
+/// singular (two solutions close together), each full step overshoots along the
+/// near-null direction and the quartered retries give up. The damping `μ` follows the
+/// gain ratio of each step (Nielsen's rule: Madsen, Nielsen and Tingleff, *Methods for
+/// non-linear least squares problems*, 2004), so it shrinks where the model holds and
+/// grows where it does not; convergence near such a solution is linear, so it can take
+/// hundreds of steps. The best iterate is returned.
+pub fn levenberg_marquardt(g: &Geometry<6>, q: [f64; 6], pose: &Pose, rounds: usize) -> [f64; 6] {
+    let size = 1.0 + pose.p.amax();
+    let (mut e, mut j) = error_and_jacobian(g, &q, pose);
+    let (mut q, mut cost) = (q, e.norm_squared());
+    let jtj = j.transpose() * j;
+    let mut mu = 1e-6 * (0..6).map(|i| jtj[(i, i)]).fold(0.0, f64::max);
+    let mut nu = 2.0;
+    for _ in 0..rounds {
+        let miss = e.amax();
+        if miss.is_nan() || miss <= 1e-15 * size {
+            break;
+        }
+        let (jtj, grad) = (j.transpose() * j, j.transpose() * e);
+        let a = jtj + Matrix6::identity() * mu;
+        let Some(step) = a.cholesky().map(|c| c.solve(&grad)) else {
+            break;
+        };
+        let next = step_from(&q, &step, 1.0);
+        let (e2, j2) = error_and_jacobian(g, &next, pose);
+        let cost2 = e2.norm_squared();
+        // The reduction the linear model predicts, hᵀ(μh + g) for the cost ‖e‖².
+        let predicted = step.dot(&(step * mu + grad));
+        let gain = (cost - cost2) / predicted;
+        if gain > 0.0 && cost2.is_finite() {
+            (q, cost, e, j) = (next, cost2, e2, j2);
+            let t = 2.0 * gain - 1.0;
+            mu *= f64::max(1.0 / 3.0, 1.0 - t * t * t);
+            nu = 2.0;
+        } else {
+            mu *= nu;
+            nu *= 2.0;
+            // Steps too short to move: done (a NaN'd damping too).
+            if mu.is_nan() || mu >= 1e12 * (1.0 + jtj.amax()) {
+                break;
+            }
+        }
+    }
+    q
 }
 
 /// `q + scale · step`.
