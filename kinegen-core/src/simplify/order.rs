@@ -32,7 +32,7 @@ pub fn cheapest(chain: &Chain, options: &Options, deadline: Deadline) -> Model {
         candidates.push(Some(n - 1));
     }
     let total = candidates.len();
-    let mut built: Vec<(usize, usize, Model)> = Vec::new();
+    let mut built: Vec<(usize, Model)> = Vec::new();
     let mut notes = Vec::new();
     for (tried, pivot) in candidates.into_iter().enumerate() {
         if tried > 0 && deadline.passed() {
@@ -45,15 +45,26 @@ pub fn cheapest(chain: &Chain, options: &Options, deadline: Deadline) -> Model {
         }
         let model = Model::candidate(chain, options.budget.max_terms(), pivot, deadline);
         let overflowed = model.sym.graph.nf_overflows > 0;
-        built.push((cost(chain, &model), tried, model));
+        built.push((tried, model));
         if overflowed {
             break;
         }
     }
+    // Counting a candidate's operations is writing its code (a long chain's `fk` and
+    // `jacobian`: 1.8 s of 2 000 joints' 14 s): done only where there is a choice.
+    let mut built: Vec<(usize, usize, Model)> = match built.len() {
+        1 => built.into_iter().map(|(tried, m)| (0, tried, m)).collect(),
+        _ => built
+            .into_iter()
+            .map(|(tried, m)| (cost(chain, &m), tried, m))
+            .collect(),
+    };
     // Cheapest unsimplified first; ties keep the candidates' order.
     built.sort_by_key(|&(c, tried, _)| (c, tried));
     let limit = built[0].0 * SIMPLIFY_MARGIN.0 / SIMPLIFY_MARGIN.1;
-    let mut best: Option<(usize, usize, Model)> = None;
+    // The best simplified so far: its count (once a second one is there to compare),
+    // its place among the candidates, the model.
+    let mut best: Option<(Option<usize>, usize, Model)> = None;
     let compared = built.len();
     for (simplified, (raw, tried, model)) in built.into_iter().enumerate() {
         if best.is_some() && raw > limit {
@@ -68,10 +79,18 @@ pub fn cheapest(chain: &Chain, options: &Options, deadline: Deadline) -> Model {
             break;
         }
         let model = simplify(model.with_tool_frame(chain), options);
-        let c = cost(chain, &model);
-        if best.as_ref().is_none_or(|(b, t, _)| (c, tried) < (*b, *t)) {
-            best = Some((c, tried, model));
-        }
+        best = match best {
+            None => Some((None, tried, model)),
+            Some((b, t, m)) => {
+                let b = b.unwrap_or_else(|| cost(chain, &m));
+                let c = cost(chain, &model);
+                if (c, tried) < (b, t) {
+                    Some((Some(c), tried, model))
+                } else {
+                    Some((Some(b), t, m))
+                }
+            }
+        };
     }
     let mut model = best.map(|(_, _, m)| m).expect("at least one candidate");
     model.notes.extend(notes);
@@ -90,13 +109,10 @@ pub fn variant(
     pivot: Option<usize>,
     deadline: Deadline,
 ) -> Model {
-    let t0 = std::time::Instant::now();
-    let model = Model::symbolic(chain, options.budget.max_terms(), pivot, deadline);
-    eprintln!("TIME   symbolic {:?} {:?}", pivot, t0.elapsed());
-    let t0 = std::time::Instant::now();
-    let m = simplify(model, options);
-    eprintln!("TIME   simplify {:?} {:?}", pivot, t0.elapsed());
-    m
+    simplify(
+        Model::symbolic(chain, options.budget.max_terms(), pivot, deadline),
+        options,
+    )
 }
 
 /// Operations of `fk` plus `jacobian` after sharing.
