@@ -8,7 +8,7 @@
 //! whose value is the sine or cosine of a sum or difference of joint angles are named
 //! after it (`c23`, `c2m3`: [`AngleName`]).
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use crate::algebra::angles::AngleSource;
 use crate::algebra::graph::{Graph, Id, Node};
@@ -269,6 +269,9 @@ impl<'a> Coder<'a> {
     fn intermediates(&self, uses: &BTreeMap<Id, usize>, body: &mut Body) -> HashMap<Id, String> {
         let g = self.g();
         let mut names: HashMap<Id, String> = HashMap::new();
+        // The names given so far, for `sum_name`'s look-up (a scan of `names` was
+        // quadratic: a long chain's bodies bind tens of thousands).
+        let mut taken: HashSet<String> = HashSet::new();
         let mut temp = 0usize;
         let mut depth: HashMap<Id, usize> = HashMap::new();
         for (&id, &n) in uses {
@@ -296,20 +299,21 @@ impl<'a> Coder<'a> {
                 continue;
             }
             let (expr, _) = self.expr(id, &names, &mut body.ops);
-            let name = self.sum_name(id, &names).unwrap_or_else(|| {
+            let name = self.sum_name(id, &taken).unwrap_or_else(|| {
                 temp += 1;
                 format!("t{temp}")
             });
             body.lets.push(format!("let {name} = {expr};"));
             body.defs.push((name.clone(), expr));
+            taken.insert(name.clone());
             names.insert(id, name);
         }
         names
     }
 
     /// `c23` for a node whose value is cos(q2 + q3) (`nc23` for its negation, which the
-    /// sign pass may compute instead), unless the name is taken.
-    fn sum_name(&self, id: Id, names: &HashMap<Id, String>) -> Option<String> {
+    /// sign pass may compute instead), unless the name is `taken`.
+    fn sum_name(&self, id: Id, taken: &HashSet<String>) -> Option<String> {
         self.g()
             .nf(id)
             // Angle sums are small: don't hash the big normal forms.
@@ -320,7 +324,7 @@ impl<'a> Coder<'a> {
                     .cloned()
                     .or_else(|| self.sum_names.get(&p.neg()).map(|n| format!("n{n}")))
             })
-            .filter(|n| !names.values().any(|m| m == n))
+            .filter(|n| !taken.contains(n))
     }
 
     /// The scalar `sin_cos` of the robot's float type.
