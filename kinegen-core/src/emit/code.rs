@@ -59,6 +59,103 @@ pub struct Body {
 /// Deepest expression written inline before it gets a `let` of its own.
 const MAX_INLINE_DEPTH: usize = 12;
 
+/// Most `let`s a body writes in one run. Every `let` opens a lexical scope inside the one
+/// before, and LLVM writes a debug build's scopes recursively: the 4 157 nested `let`s
+/// of a 100-joint oblique chain's `fk` overflowed rustc's stack in a default debug build
+/// (a SIGSEGV in `DwarfCompileUnit::createAndAddScopeChildren`); 50 joints' (about 2 000)
+/// built. A longer body is cut into blocks of this many ([`in_blocks`]), so scopes nest
+/// at most this deep plus one per block. The shipped robots' bodies are shorter.
+const MAX_LET_RUN: usize = 1024;
+
+/// `lets` as they are if there are at most [`MAX_LET_RUN`], else cut into blocks of that
+/// many, each `let (a, b, …) = { …; (a, b, …) };` binding the names it defines that a
+/// later statement or one of `outputs` reads (read off the text: an identifier that
+/// merely looks like a name, a field `self.d1`, only hands on one name more).
+fn in_blocks(lets: Vec<String>, outputs: &[String]) -> Vec<String> {
+    if lets.len() <= MAX_LET_RUN {
+        return lets;
+    }
+    let blocks: Vec<&[String]> = lets.chunks(MAX_LET_RUN).collect();
+    let mut defined_in: HashMap<&str, usize> = HashMap::new();
+    for (b, block) in blocks.iter().enumerate() {
+        for name in block.iter().flat_map(|s| bound_names(s)) {
+            defined_in.insert(name, b);
+        }
+    }
+    let mut read_later: Vec<HashSet<&str>> = vec![HashSet::new(); blocks.len()];
+    let reads = blocks
+        .iter()
+        .enumerate()
+        .flat_map(|(b, block)| block.iter().map(move |s| (b, s.as_str())))
+        .chain(outputs.iter().map(|o| (blocks.len(), o.as_str())));
+    for (b, text) in reads {
+        for id in identifiers(text) {
+            match defined_in.get(id) {
+                Some(&d) if d < b => {
+                    read_later[d].insert(id);
+                }
+                _ => {}
+            }
+        }
+    }
+    blocks
+        .iter()
+        .zip(&read_later)
+        .map(|(block, later)| {
+            let names: Vec<&str> = block
+                .iter()
+                .flat_map(|s| bound_names(s))
+                .filter(|n| later.contains(n))
+                .collect();
+            let tuple = match names.as_slice() {
+                [one] => one.to_string(),
+                _ => format!("({})", names.join(", ")),
+            };
+            format!("let {tuple} = {{\n{}\n{tuple}\n}};", block.join("\n"))
+        })
+        .collect()
+}
+
+/// The names a statement `let PATTERN = …;` binds (none for `_` or another statement).
+fn bound_names(statement: &str) -> Vec<&str> {
+    let Some(rest) = statement.strip_prefix("let ") else {
+        return Vec::new();
+    };
+    let pattern = rest.split(" = ").next().unwrap_or("");
+    identifiers(pattern)
+        .filter(|&n| n != "_" && n != "mut")
+        .collect()
+}
+
+/// The identifiers of a piece of Rust (numbers, with their exponents and suffixes,
+/// skipped).
+fn identifiers(text: &str) -> impl Iterator<Item = &str> {
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        while i < bytes.len() {
+            let c = bytes[i];
+            let start = i;
+            if c.is_ascii_alphabetic() || c == b'_' {
+                while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
+                    i += 1;
+                }
+                return Some(&text[start..i]);
+            }
+            if c.is_ascii_digit() {
+                while i < bytes.len()
+                    && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_' || bytes[i] == b'.')
+                {
+                    i += 1;
+                }
+                continue;
+            }
+            i += 1;
+        }
+        None
+    })
+}
+
 /// Emits bodies for one chain.
 pub struct Coder<'a> {
     chain: &'a Chain,
@@ -158,6 +255,7 @@ impl<'a> Coder<'a> {
             let (e, _) = self.expr(o, &names, &mut body.ops);
             body.outputs.push(e);
         }
+        body.lets = in_blocks(std::mem::take(&mut body.lets), &body.outputs);
         body
     }
 
@@ -504,4 +602,47 @@ pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Pol
         plain.entry(p).or_insert(name);
     }
     plain
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identifiers_skip_numbers_and_their_exponents() {
+        let ids: Vec<&str> =
+            identifiers("t12 * 1.5e-3f64 + ::kinegen::math::sqrt(s_k2) - 2e5").collect();
+        assert_eq!(ids, ["t12", "kinegen", "math", "sqrt", "s_k2"]);
+    }
+
+    /// A body of 2 500 `let`s in a chain, each reading the one before and the first:
+    /// three blocks, each handing on what a later block or the output reads.
+    #[test]
+    fn a_long_body_is_cut_into_blocks_that_hand_on_what_is_read_later() {
+        let mut lets = vec![
+            "let _ = q;".to_string(),
+            "let (s1, c1) = (0.5, 0.8);".to_string(),
+        ];
+        lets.extend((2..2500).map(|k| format!("let t{k} = t{} * s1 + c1;", k - 1)));
+        lets[2] = "let t2 = s1 * c1;".to_string();
+        let blocks = in_blocks(lets.clone(), &["t2499".to_string()]);
+        assert_eq!(blocks.len(), 3);
+        assert!(
+            blocks[0].starts_with("let (s1, c1, t1023) = {\nlet _ = q;"),
+            "{}",
+            &blocks[0][..80]
+        );
+        assert!(blocks[0].ends_with("\n(s1, c1, t1023)\n};"));
+        assert!(blocks[1].starts_with("let t2047 = {\nlet t1024 = t1023 * s1 + c1;"));
+        assert!(blocks[2].ends_with("\nt2499\n};"));
+        // t2 is read by the output: block 0 hands it on too.
+        let blocks = in_blocks(lets.clone(), &["t2499 + t2 + t1500".to_string()]);
+        assert!(blocks[0].starts_with("let (s1, c1, t2, t1023) = {"));
+        assert!(blocks[1].starts_with("let (t1500, t2047) = {"));
+        // Short bodies are left as they are.
+        assert_eq!(
+            in_blocks(lets[..MAX_LET_RUN].to_vec(), &[]),
+            lets[..MAX_LET_RUN]
+        );
+    }
 }
