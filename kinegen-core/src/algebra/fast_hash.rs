@@ -20,6 +20,9 @@ use crate::model::value::Rat;
 /// A `HashMap` with [`FxHasher`].
 pub type FastMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 
+/// A `HashSet` with [`FxHasher`].
+pub type FastSet<K> = std::collections::HashSet<K, BuildHasherDefault<FxHasher>>;
+
 /// rustc's Fx hash: per word, rotate, xor, multiply. Not for untrusted keys (no DoS
 /// resistance) — the engine's keys are its own.
 #[derive(Clone, Copy, Debug, Default)]

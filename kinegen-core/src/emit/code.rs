@@ -11,6 +11,7 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use crate::algebra::angles::AngleSource;
+use crate::algebra::fast_hash::{FastMap, FastSet};
 use crate::algebra::graph::{Graph, Id, Node};
 use crate::algebra::poly::{Poly, VarKind};
 use crate::algebra::trig;
@@ -76,16 +77,23 @@ fn in_blocks(lets: Vec<String>, outputs: &[String]) -> Vec<String> {
         return lets;
     }
     let blocks: Vec<&[String]> = lets.chunks(MAX_LET_RUN).collect();
-    let mut defined_in: HashMap<&str, usize> = HashMap::new();
-    for (b, block) in blocks.iter().enumerate() {
-        for name in block.iter().flat_map(|s| bound_names(s)) {
+    // Each block's names, in order, and where each name is bound.
+    let defines: Vec<Vec<&str>> = blocks
+        .iter()
+        .map(|block| block.iter().flat_map(|s| bound_names(s)).collect())
+        .collect();
+    let mut defined_in: FastMap<&str, usize> = FastMap::default();
+    for (b, names) in defines.iter().enumerate() {
+        for &name in names {
             defined_in.insert(name, b);
         }
     }
-    let mut read_later: Vec<HashSet<&str>> = vec![HashSet::new(); blocks.len()];
+    let mut read_later: Vec<FastSet<&str>> = vec![FastSet::default(); blocks.len()];
+    // (Block 0's statements can read no earlier block.)
     let reads = blocks
         .iter()
         .enumerate()
+        .skip(1)
         .flat_map(|(b, block)| block.iter().map(move |s| (b, s.as_str())))
         .chain(outputs.iter().map(|o| (blocks.len(), o.as_str())));
     for (b, text) in reads {
@@ -100,11 +108,11 @@ fn in_blocks(lets: Vec<String>, outputs: &[String]) -> Vec<String> {
     }
     blocks
         .iter()
-        .zip(&read_later)
-        .map(|(block, later)| {
-            let names: Vec<&str> = block
+        .zip(defines.iter().zip(&read_later))
+        .map(|(block, (names, later))| {
+            let names: Vec<&str> = names
                 .iter()
-                .flat_map(|s| bound_names(s))
+                .copied()
                 .filter(|n| later.contains(n))
                 .collect();
             let tuple = match names.as_slice() {
