@@ -271,7 +271,11 @@ impl Urdf {
 
     /// Links that are no joint's child.
     pub fn roots(&self) -> Vec<&str> {
-        let parents = self.parent_joints();
+        self.roots_of(&self.parent_joints())
+    }
+
+    /// [`Urdf::roots`] given [`Urdf::parent_joints`].
+    fn roots_of(&self, parents: &BTreeMap<&str, &Joint>) -> Vec<&str> {
         self.links
             .iter()
             .map(|(n, _)| n.as_str())
@@ -336,10 +340,11 @@ impl Urdf {
         if !errors.list.is_empty() {
             return;
         }
-        let roots = self.roots();
+        // No link has two parents: `parent_of` is `parent_joints()`.
+        let roots = self.roots_of(&parent_of);
         match roots.as_slice() {
-            [_] => self.check_cycles(errors),
-            [] => self.check_cycles(errors),
+            [_] => self.check_cycles(&parent_of, errors),
+            [] => self.check_cycles(&parent_of, errors),
             many => errors.at(
                 self.line,
                 Path::root(),
@@ -352,10 +357,10 @@ impl Urdf {
         }
     }
 
-    /// Every link reaches a root through its parents. Each walk up stops at a link an
-    /// earlier walk showed to reach one, so every link is passed once.
-    fn check_cycles(&self, errors: &mut Errors) {
-        let parents = self.parent_joints();
+    /// Every link reaches a root through its `parents` ([`Urdf::parent_joints`]). Each
+    /// walk up stops at a link an earlier walk showed to reach one, so every link is
+    /// passed once.
+    fn check_cycles(&self, parents: &BTreeMap<&str, &Joint>, errors: &mut Errors) {
         let mut rooted: BTreeSet<&str> = BTreeSet::new();
         let mut walk: Vec<&str> = Vec::new();
         for (link, _) in &self.links {
@@ -396,6 +401,7 @@ impl Urdf {
         base: Option<&str>,
         tip: Option<&str>,
     ) -> Result<(String, String, Vec<&Joint>), LoadError> {
+        let parents = self.parent_joints();
         let err = |key: &str, line: usize, msg: String| {
             LoadError::at(&self.label, line, Path::root().key(key), msg)
         };
@@ -416,7 +422,7 @@ impl Urdf {
                 // frame beside `base_link`) ends no chain of joints: not a tip to guess.
                 let moving: Vec<(&str, Vec<&Joint>)> = leaves
                     .iter()
-                    .map(|&l| (l, self.moving_joints(&base, l)))
+                    .map(|&l| (l, moving_joints(&parents, &base, l)))
                     .filter(|(_, js)| !js.is_empty())
                     .collect();
                 // A parallel gripper's fingers (the Panda's): two or more leaves, each with
@@ -475,7 +481,6 @@ impl Urdf {
                 }
             }
         };
-        let parents = self.parent_joints();
         let mut joints = Vec::new();
         let mut cur = tip.as_str();
         while cur != base {
@@ -496,28 +501,6 @@ impl Urdf {
         }
         joints.reverse();
         Ok((base, tip, joints))
-    }
-
-    /// The joints that are not fixed between `base` and `leaf`, base to leaf (none when
-    /// `leaf` is not below `base`).
-    fn moving_joints<'a>(&'a self, base: &str, leaf: &'a str) -> Vec<&'a Joint> {
-        let parents = self.parent_joints();
-        let mut cur = leaf;
-        let mut moving = Vec::new();
-        // The tree was checked (one parent per link, no cycle): the walk ends at the root.
-        while cur != base {
-            match parents.get(cur).copied() {
-                Some(j) => {
-                    if j.kind != JointType::Fixed {
-                        moving.push(j);
-                    }
-                    cur = &j.parent;
-                }
-                None => return Vec::new(),
-            }
-        }
-        moving.reverse();
-        moving
     }
 
     fn link_line(&self, name: &str) -> usize {
@@ -542,6 +525,31 @@ impl Urdf {
             ),
         ))
     }
+}
+
+/// The joints that are not fixed between `base` and `leaf`, base to leaf (none when
+/// `leaf` is not below `base`), walking up `parents` ([`Urdf::parent_joints`]).
+fn moving_joints<'a>(
+    parents: &BTreeMap<&'a str, &'a Joint>,
+    base: &str,
+    leaf: &'a str,
+) -> Vec<&'a Joint> {
+    let mut cur = leaf;
+    let mut moving = Vec::new();
+    // The tree was checked (one parent per link, no cycle): the walk ends at the root.
+    while cur != base {
+        match parents.get(cur).copied() {
+            Some(j) => {
+                if j.kind != JointType::Fixed {
+                    moving.push(j);
+                }
+                cur = &j.parent;
+            }
+            None => return Vec::new(),
+        }
+    }
+    moving.reverse();
+    moving
 }
 
 /// `` `a`, `b` and `c` ``.
