@@ -170,18 +170,14 @@ pub fn general_6r<const K: usize>(
                 if room && !found.as_slice().iter().any(|c| same(&c.q, &q)) {
                     // Out of reach (or a workspace-boundary pose Newton cannot settle on):
                     // the nearest, flagged so; `finish` drops them where a branch reaches.
-                    found.push(
-                        q,
-                        // A singular one (a continuum's point) is flagged so, and yields
-                        // its place to the isolated solutions.
-                        if reached(&q) && hadamard_ratio(g, &q) < NEAR_SINGULAR {
-                            Fit::Double
-                        } else if reached(&q) {
-                            Fit::Free
-                        } else {
-                            Fit::LeastSquares
-                        },
-                    );
+                    // A singular one (a continuum's point) is flagged so, and yields its
+                    // place to the isolated solutions.
+                    let fit = match reached(&q) {
+                        false => Fit::LeastSquares,
+                        true if hadamard_ratio(g, &q) < NEAR_SINGULAR => Fit::Double,
+                        true => Fit::Free,
+                    };
+                    found.push(q, fit);
                 }
             }
         }
