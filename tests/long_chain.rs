@@ -13,34 +13,22 @@ kinegen::kinematics! {
     pub struct Oblique100 = urdf("tests/data/oblique100.urdf");
 }
 
-type M4 = [[f64; 4]; 4];
-
-fn mul(a: &M4, b: &M4) -> M4 {
-    core::array::from_fn(|i| core::array::from_fn(|j| (0..4).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
-/// The rotation by `angle` about the unit `axis`, in a homogeneous matrix (Rodrigues).
-fn turn(axis: [f64; 3], angle: f64) -> M4 {
-    let (s, c) = angle.sin_cos();
-    let [x, y, z] = axis;
-    let v = 1.0 - c;
-    [
-        [c + x * x * v, x * y * v - z * s, x * z * v + y * s, 0.0],
-        [y * x * v + z * s, c + y * y * v, y * z * v - x * s, 0.0],
-        [z * x * v - y * s, z * y * v + x * s, c + z * z * v, 0.0],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
+use kinegen::nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 /// The product of the chain's joint transforms, as the URDF specification defines them:
-/// `origin` (translation, then `Rz(yaw) Ry(pitch) Rx(roll)`), then the turn about `axis`.
-fn reference_fk(q: &[f64; 100]) -> M4 {
-    let mut origin = mul(&turn([0.0, 0.0, 1.0], 0.1), &turn([0.0, 1.0, 0.0], 0.2));
-    origin = mul(&origin, &turn([1.0, 0.0, 0.0], 0.3));
-    (origin[0][3], origin[1][3], origin[2][3]) = (0.1, 0.05, 0.2);
-    q.iter().fold(turn([1.0, 0.0, 0.0], 0.0), |t, &qi| {
-        mul(&mul(&t, &origin), &turn([0.6, 0.8, 0.0], qi))
-    })
+/// `origin` (translation, then roll, pitch, yaw about fixed axes), then the turn about
+/// `axis`.
+fn reference_fk(q: &[f64; 100]) -> [[f64; 4]; 4] {
+    let origin = Isometry3::from_parts(
+        Translation3::new(0.1, 0.05, 0.2),
+        UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1),
+    );
+    let axis = Vector3::new(0.6, 0.8, 0.0);
+    let t = q.iter().fold(Isometry3::identity(), |t, &qi| {
+        t * origin * Isometry3::rotation(axis * qi)
+    });
+    let m = t.to_homogeneous();
+    core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]))
 }
 
 #[test]
