@@ -118,24 +118,52 @@ pub fn to_json(s: &Stats) -> Value {
     v
 }
 
-/// A readable table.
+/// A readable table, its columns as wide as its largest count needs (a long chain's
+/// counts run to six digits and more).
 pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
-    let mut out = format!(
-        "{} — operations of the generated code (after sharing; a subtraction counts as an add)\n\n{:<10}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}\n",
-        chain.name, "output", "add", "mul", "div", "neg", "total", "trig"
-    );
+    let counts = [&s.fk, &s.jacobian]
+        .into_iter()
+        .chain(&s.det)
+        .chain(s.second.iter().map(|(_, o)| o));
+    let digits = counts
+        .map(|o| o.total().to_string().len())
+        .max()
+        .unwrap_or(1);
+    // One space at least between columns: `total` is the widest count.
+    let w = (digits + 1).max(6);
+    let head = |out: &mut String, title: &str, width: usize| {
+        let _ = writeln!(
+            out,
+            "{title:<width$}{:>w$}{:>w$}{:>w$}{:>w$}{:>t$}{:>r$}",
+            "add",
+            "mul",
+            "div",
+            "neg",
+            "total",
+            "trig",
+            t = w + 2,
+            r = w + 1
+        );
+    };
     let row_of = |out: &mut String, width: usize, name: &str, o: &OpCount| {
         let _ = writeln!(
             out,
-            "{name:<width$}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}",
+            "{name:<width$}{:>w$}{:>w$}{:>w$}{:>w$}{:>t$}{:>r$}",
             o.add,
             o.mul,
             o.div,
             o.neg,
             o.total(),
-            o.trig
+            o.trig,
+            t = w + 2,
+            r = w + 1
         );
     };
+    let mut out = format!(
+        "{} — operations of the generated code (after sharing; a subtraction counts as an add)\n\n",
+        chain.name
+    );
+    head(&mut out, "output", 10);
     let row = |out: &mut String, name: &str, o: &OpCount| row_of(out, 10, name, o);
     row(&mut out, "fk", &s.fk);
     row(&mut out, "jacobian", &s.jacobian);
@@ -145,11 +173,8 @@ pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
             let _ = writeln!(out, "{:<10}{missing}", "det");
         }
     }
-    let _ = writeln!(
-        out,
-        "\n{:<16}{:>6}{:>6}{:>6}{:>6}{:>8}{:>7}",
-        "second order", "add", "mul", "div", "neg", "total", "trig"
-    );
+    out.push('\n');
+    head(&mut out, "second order", 16);
     for (name, o) in &s.second {
         row_of(&mut out, 16, name, o);
     }
@@ -173,4 +198,49 @@ pub fn engine_time(s: &Stats) -> String {
         t.ik_emit_ms,
         t.print_ms
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ops(add: usize, mul: usize) -> OpCount {
+        OpCount {
+            add,
+            mul,
+            div: 0,
+            neg: 3,
+            trig: 2000,
+        }
+    }
+
+    #[test]
+    fn the_table_s_columns_fit_six_digit_counts() {
+        let src = "name = \"RR\"\nconvention = \"standard\"\n[[joints]]\ntype = \"revolute\"\n\
+                   a = 1.0\nalpha = 0\nd = 0\n";
+        let (robot, _) = kinegen_core::front::toml_file::load_str(src, "rr.toml").unwrap();
+        let s = Stats {
+            fk: ops(89_977, 161_969),
+            jacobian: ops(12, 34),
+            det: None,
+            second: vec![("hessian", ops(1, 2))],
+            time_ms: 1.0,
+            stages: StageTimes::default(),
+        };
+        let table = to_table(&robot.chain(), &s, "not available");
+        let fk = table.lines().find(|l| l.starts_with("fk")).unwrap();
+        let cells: Vec<&str> = fk.split_whitespace().collect();
+        assert_eq!(
+            cells,
+            ["fk", "89977", "161969", "0", "3", "251949", "2000"],
+            "{table}"
+        );
+        // Every row's counts end where their header's names end.
+        let head = table.lines().find(|l| l.starts_with("output")).unwrap();
+        assert_eq!(head.len(), fk.len(), "{table}");
+        assert_eq!(
+            head.find("total").unwrap() + 5,
+            fk.find("251949").unwrap() + 6
+        );
+    }
 }
