@@ -61,6 +61,7 @@ fn run(what: &str, src: &str, urdf: &str, ms: u64) -> (Duration, Vec<String>) {
         generated.times, generated.notes
     );
     let code = generated.tokens.to_string();
+    assert!(!code.contains("compile_error"), "{what}: {code:.300}");
     for f in [
         "fn fk",
         "fn jacobian",

@@ -725,7 +725,8 @@ impl Robot {
     /// Every closed form of the generated code, as its `FORMULAS` lists them: dicts of
     /// `function` (`"fk"`, `"jacobian"`, `"jacobian_det"`, `"hessian"`, …), `name`
     /// (`"t4"`, `"c23"` for a shared intermediate, `"T[0][3]"`, `"J[2][1]"`, `"det"`),
-    /// `text` (Rust syntax) and `latex`, each function's intermediates before its outputs.
+    /// `text` (Rust syntax) and `latex`, each function's intermediates before its outputs;
+    /// at most the first 10 000, as `FORMULAS` (a chain of hundreds of joints has more).
     #[getter]
     fn formulas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let i = &*self.inner;

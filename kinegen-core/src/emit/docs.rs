@@ -6,6 +6,7 @@ use std::fmt::Write;
 use crate::chain::Chain;
 use crate::emit::angle_names::AngleName;
 use crate::emit::code::Body;
+use crate::emit::formulas::MAX_FORMULAS;
 use crate::emit::mathml;
 
 /// The robot type's rustdoc: what the robot is, the front end's summary (a DH table),
@@ -47,7 +48,8 @@ pub fn struct_doc(chain: &Chain) -> String {
 /// The longest formula listing a function's doc shows, in bytes of text (about a
 /// thousand lines; the longest among the shipped robots, a Kinova Gen3 method's, is
 /// 6 KB). A longer one is left out of the doc, which says so: nobody reads tens of
-/// thousands of intermediates in rustdoc, every formula stays in `FORMULAS`, and printing
+/// thousands of intermediates in rustdoc, every formula stays in `kinegen show` (and the
+/// first [`MAX_FORMULAS`] in `FORMULAS`), and printing
 /// them twice more (text and MathML) was most of what a long chain's emission printed
 /// (200 oblique joints: 15 of 21 MB of code).
 pub const MAX_LISTING: usize = 64 * 1024;
@@ -82,7 +84,7 @@ fn text_doc(summary: &str, body: &Body, names: &[String], len: usize) -> String 
     if len > MAX_LISTING {
         return format!(
             "{head}: its {} formulas ({} KB of text, over the {} KB a doc lists) are in \
-             `FORMULAS` and `kinegen show`.",
+             `kinegen show` and, within its first {MAX_FORMULAS}, `FORMULAS`.",
             body.defs.len() + body.outputs.len(),
             len.div_ceil(1024),
             MAX_LISTING / 1024
@@ -199,7 +201,7 @@ mod tests {
         assert!(doc.starts_with("FK.\n\nClosed form (0 operations"), "{doc}");
         assert!(doc.contains("its 4001 formulas"), "{doc}");
         assert!(
-            doc.contains("are in `FORMULAS` and `kinegen show`"),
+            doc.contains("are in `kinegen show` and, within its first 10000, `FORMULAS`"),
             "{doc}"
         );
         assert!(!doc.contains("t1 =") && !doc.contains("<math"), "{doc}");

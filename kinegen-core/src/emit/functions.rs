@@ -6,7 +6,7 @@ use crate::algebra::graph::Id;
 use crate::chain::Chain;
 use crate::emit::code::{Body, Coder, OpCount};
 use crate::emit::docs::{formula_doc_with_math, math_block, matrix_names};
-use crate::emit::formulas::Formulas;
+use crate::emit::formulas::{Formulas, MAX_FORMULAS};
 use crate::emit::ik::{items as ik_items, CheckImpl, SingularCheck};
 pub use crate::emit::item::{Const, Item, Method, MethodBody};
 use crate::emit::mathml;
@@ -475,11 +475,25 @@ impl Out<'_> {
 
     fn formulas_and_limits(&mut self) {
         let formulas = format!("&[{}]", self.formulas.rust());
-        self.konst(
+        let mut doc =
             "The closed forms above as data, for people and tools: each function's shared \
              intermediates (`t4`, `c23`, in order) then its outputs (`T[0][3]`, `J[2][1]`, `det`, \
              the singular factors `f[k]`), as plain text and LaTeX."
-                .into(),
+                .to_string();
+        let left_out = self.formulas.left_out();
+        if left_out > 0 {
+            let (listed, total) = (self.formulas.len(), self.formulas.len() + left_out);
+            doc.push_str(&format!(
+                "\n\nThe first {listed} of {total}: a constant lists at most {MAX_FORMULAS}; \
+                 `kinegen show` prints every one."
+            ));
+            self.notes.push(format!(
+                "`FORMULAS` lists the first {listed} of {total} formulas (at most {MAX_FORMULAS}); \
+                 `kinegen show` prints every one"
+            ));
+        }
+        self.konst(
+            doc,
             "FORMULAS",
             "&'static [::kinegen::Formula]".into(),
             formulas,

@@ -46,7 +46,7 @@ pub enum MethodBody {
 /// A constant `pub const name: ty = value;`.
 #[derive(Clone, Debug)]
 pub struct Const {
-    /// Rustdoc (one line).
+    /// Rustdoc (markdown, one line or several).
     pub doc: String,
     /// Name.
     pub name: &'static str,

@@ -288,9 +288,28 @@ fn method(out: &mut String, m: &Method, qty: &str) {
 }
 
 fn konst(out: &mut String, c: &Const) {
-    let _ = writeln!(
-        out,
-        "/// {}\npub const {}: {} = {};",
-        c.doc, c.name, c.ty, c.value
-    );
+    doc_lines(out, &c.doc);
+    let _ = writeln!(out, "pub const {}: {} = {};", c.name, c.ty, c.value);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_constant_s_doc_of_several_lines_stays_a_doc() {
+        let mut out = String::new();
+        let c = Const {
+            doc: "Formulas.\n\nThe first 2 of 3.".into(),
+            name: "FORMULAS",
+            ty: "&'static [u8]".into(),
+            value: "&[1, 2]".into(),
+        };
+        konst(&mut out, &c);
+        assert_eq!(
+            out,
+            "/// Formulas.\n///\n/// The first 2 of 3.\npub const FORMULAS: &'static [u8] = &[1, 2];\n"
+        );
+        assert!(out.parse::<TokenStream>().is_ok());
+    }
 }

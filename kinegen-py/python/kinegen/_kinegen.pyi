@@ -71,7 +71,7 @@ class Robot:
         """The closed-form IK family, or None."""
     @property
     def formulas(self) -> List[Dict[str, str]]:
-        """The generated code's FORMULAS: dicts of function, name, text, latex."""
+        """The generated code's FORMULAS: dicts of function, name, text, latex (the first 10 000)."""
     @property
     def det(self) -> str:
         """det J as ``kinegen show --what det`` prints it."""
