@@ -170,11 +170,12 @@ pub fn matrix_names(m: &str, rows: usize, cols: usize) -> Vec<String> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::emit::code::OpCount;
 
-    fn body(defs: usize) -> (Body, Vec<String>) {
+    /// A body of `defs` intermediates `t1`, `t2`, … and one output, with its name.
+    pub(crate) fn body(defs: usize) -> (Body, Vec<String>) {
         let body = Body {
             lets: Vec::new(),
             outputs: vec!["t1 + c1".into()],

@@ -88,20 +88,7 @@ impl Formulas {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::code::OpCount;
-
-    /// A body of `defs` intermediates and one output.
-    fn body(defs: usize) -> (Body, Vec<String>) {
-        let body = Body {
-            lets: Vec::new(),
-            outputs: vec!["t1 + c1".into()],
-            defs: (1..=defs)
-                .map(|i| (format!("t{i}"), format!("c{i} * s{i}")))
-                .collect(),
-            ops: OpCount::default(),
-        };
-        (body, vec!["T[0][0]".into()])
-    }
+    use crate::emit::docs::tests::body;
 
     #[test]
     fn formulas_past_the_bound_are_counted_not_listed() {
