@@ -613,8 +613,22 @@ pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Pol
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// A body of `defs` intermediates `t1`, `t2`, … and one output, with its name (the
+    /// docs' and `FORMULAS`' tests).
+    pub(crate) fn body(defs: usize) -> (Body, Vec<String>) {
+        let body = Body {
+            lets: Vec::new(),
+            outputs: vec!["t1 + c1".into()],
+            defs: (1..=defs)
+                .map(|i| (format!("t{i}"), format!("c{i} * s{i} + L{i}")))
+                .collect(),
+            ops: OpCount::default(),
+        };
+        (body, vec!["T[0][3]".into()])
+    }
 
     #[test]
     fn identifiers_skip_numbers_and_their_exponents() {

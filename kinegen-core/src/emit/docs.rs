@@ -170,22 +170,9 @@ pub fn matrix_names(m: &str, rows: usize, cols: usize) -> Vec<String> {
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
+mod tests {
     use super::*;
-    use crate::emit::code::OpCount;
-
-    /// A body of `defs` intermediates `t1`, `t2`, … and one output, with its name.
-    pub(crate) fn body(defs: usize) -> (Body, Vec<String>) {
-        let body = Body {
-            lets: Vec::new(),
-            outputs: vec!["t1 + c1".into()],
-            defs: (1..=defs)
-                .map(|i| (format!("t{i}"), format!("c{i} * s{i} + L{i}")))
-                .collect(),
-            ops: OpCount::default(),
-        };
-        (body, vec!["T[0][3]".into()])
-    }
+    use crate::emit::code::tests::body;
 
     #[test]
     fn a_listing_is_shown_up_to_its_limit_and_said_beyond() {

@@ -88,7 +88,7 @@ impl Formulas {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::docs::tests::body;
+    use crate::emit::code::tests::body;
 
     #[test]
     fn formulas_past_the_bound_are_counted_not_listed() {
