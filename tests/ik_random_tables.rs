@@ -493,6 +493,7 @@ fn self_test_counting(
             free: &q,
             revolute: &revolute,
             limits: &limits,
+            reaching_only: false,
         };
         let sols = solve(&problem, &checks).unwrap();
         if plan.wrist == WristPair::HalfTurn {

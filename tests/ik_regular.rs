@@ -12,7 +12,9 @@
 //! branches they leave out, which must miss a pose another branch reaches by more than
 //! `NEAR_MISS` (measured here with the geometry's forward kinematics), so that `finish`
 //! would leave them out too; and they must solve the regular poses — a fallback that
-//! always ran would pass the comparison unseen.
+//! always ran would pass the comparison unseen. For a caller keeping only reaching
+//! solutions (a reachability map) the lanes may leave out such branches at poses no
+//! branch reaches too: the same candidates otherwise, bit for bit.
 
 use core::f64::consts::{FRAC_PI_2, PI};
 use kinegen::ik::families::{self, WristPair};
@@ -110,10 +112,20 @@ fn moved(g: &Geometry<6>, rng: &mut XorShift64) -> Geometry<6> {
 
 /// Compares the lanes with the branch-by-branch solve on `POSES` poses of `g`; panics
 /// where they disagree, and where the lanes leave too many regular poses to the fallback.
-/// Returns how many branches the lanes left out.
-fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), seed: u64) -> usize {
+/// Also solves each pose for a caller keeping only reaching solutions
+/// ([`Candidates::reaching_only`]), which must give the same candidates bit for bit but
+/// for least-squares branches that miss the pose by more than `NEAR_MISS` — so that
+/// `finish` could not have called them exact. Returns how many branches the lanes left
+/// out, and how many more they left out for such a caller at poses no branch reaches.
+fn compare(
+    name: &str,
+    g: &Geometry<6>,
+    (lanes, by_branch): (Lanes, ByBranch),
+    seed: u64,
+) -> (usize, usize) {
     let mut rng = XorShift64::new(seed);
     let (mut solved, mut candidates, mut near_singular, mut left_out) = (0, 0, 0, 0);
+    let mut left_out_unreached = 0;
     for n in 0..POSES {
         let mut pose = g.fk(&configuration(&mut rng));
         if n % 5 == 4 {
@@ -132,6 +144,29 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
         by_branch(g, &pose, &[0.0; 6], WristPair::HalfTurn, &mut slow);
         let (fast, slow) = (fast.as_slice(), slow.as_slice());
         let reached = slow.iter().any(|b| b.fit == Fit::Exact);
+        let mut only = Candidates::reaching_only();
+        assert!(
+            lanes(g, &pose, &mut only).is_some(),
+            "{name}, pose {n}: regular, but not for a caller keeping reaching solutions only"
+        );
+        let mut kept = only.as_slice().iter().peekable();
+        for a in fast {
+            if kept.next_if(|b| b.q == a.q && b.fit == a.fit).is_some() {
+                continue;
+            }
+            let e = residual(&pose_matrix(&g.fk(&a.q)), &pose);
+            assert!(
+                a.fit == Fit::LeastSquares && e > NEAR_MISS,
+                "{name}, pose {n}: {a:?} (residual {e:e}) left out of {only:?}"
+            );
+            if !reached {
+                left_out_unreached += 1;
+            }
+        }
+        assert!(
+            kept.next().is_none(),
+            "{name}, pose {n}: reaching only {only:?}, all {fast:?}"
+        );
         let mut next = fast.iter().peekable();
         for b in slow {
             let gap = |a: &kinegen::ik::solutions::Candidate<6>| {
@@ -184,7 +219,7 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
         near_singular * 20 <= candidates,
         "{name}: {near_singular} of {candidates}"
     );
-    left_out
+    (left_out, left_out_unreached)
 }
 
 /// The robots of `robots/` in one family, each with its own seed. Each family has robots
@@ -192,13 +227,18 @@ fn compare(name: &str, g: &Geometry<6>, (lanes, by_branch): (Lanes, ByBranch), s
 /// wrist's branch; the KR 6 and the IRB 140 have a shoulder offset — not the PUMA 560,
 /// whose offset d3 runs along the parallel axes, nor the IRB 120; the Panda's shoulder,
 /// read from the tool, misses where its SP2's circles do — not the iiwa's): the lanes must
-/// leave out some branches.
+/// leave out some branches, and for a caller keeping reaching solutions only, some more
+/// at poses out of reach.
 fn robots(robots: &[(&str, Geometry<6>)], solvers: (Lanes, ByBranch), seed: u64) {
-    let mut left_out = 0;
+    let (mut left_out, mut left_out_unreached) = (0, 0);
     for (k, (name, g)) in robots.iter().enumerate() {
-        left_out += compare(name, g, solvers, seed + k as u64);
+        let (a, b) = compare(name, g, solvers, seed + k as u64);
+        left_out += a;
+        left_out_unreached += b;
     }
+    println!("{left_out} branches left out; {left_out_unreached} more when reaching only");
     assert!(left_out > 0, "no branch left out");
+    assert!(left_out_unreached > 0, "none left out for reaching only");
 }
 
 #[test]

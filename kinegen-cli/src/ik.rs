@@ -461,7 +461,8 @@ impl Solver {
         scratch: &std::cell::RefCell<Scratch>,
         out: &mut DynSolutions,
     ) -> Result<Option<Vec<f64>>, CliError> {
-        self.solutions_into(pose, Some(q), None, None, scratch, out)?;
+        // Only an exact solution is ever the nearest.
+        self.solve_into(pose, Some(q), None, None, true, scratch, out)?;
         Ok(nearest(out, q, &self.revolute, &self.limits))
     }
 
@@ -472,6 +473,35 @@ impl Solver {
         near: Option<&[f64]>,
         locked: Option<f64>,
         arm_angle: Option<f64>,
+        scratch: &std::cell::RefCell<Scratch>,
+        out: &mut DynSolutions,
+    ) -> Result<(), CliError> {
+        self.solve_into(pose, near, locked, arm_angle, false, scratch, out)
+    }
+
+    /// The solutions of `pose` that reach it, into `out` (its solutions replaced), for a
+    /// caller that keeps no other (a reachability map): the exact solutions of
+    /// [`Solver::solutions_into`], without the least-squares branches of a pose out of
+    /// reach that the solver proves miss it (`DynProblem::reaching_only`); those it
+    /// cannot rule out come flagged inexact as before.
+    pub fn reaching_into(
+        &self,
+        pose: [[f64; 4]; 4],
+        locked: Option<f64>,
+        scratch: &std::cell::RefCell<Scratch>,
+        out: &mut DynSolutions,
+    ) -> Result<(), CliError> {
+        self.solve_into(pose, None, locked, None, true, scratch, out)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn solve_into(
+        &self,
+        pose: [[f64; 4]; 4],
+        near: Option<&[f64]>,
+        locked: Option<f64>,
+        arm_angle: Option<f64>,
+        reaching_only: bool,
         scratch: &std::cell::RefCell<Scratch>,
         out: &mut DynSolutions,
     ) -> Result<(), CliError> {
@@ -509,6 +539,7 @@ impl Solver {
             free,
             revolute: &self.revolute,
             limits: &self.limits,
+            reaching_only,
         };
         match arm_angle {
             Some(psi) => solve_arm_angle_into(&problem, psi, &checks, out),

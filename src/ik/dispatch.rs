@@ -189,6 +189,11 @@ pub struct DynProblem<'a> {
     pub revolute: &'a [bool],
     /// Joint limits.
     pub limits: &'a [[f64; 2]],
+    /// Only the solutions that reach the pose are wanted (a reachability map, `ik_near`):
+    /// at a pose no branch reaches, branches proved to miss it may be left out instead of
+    /// reported with their least-squares nearest ([`Candidates::reaching_only`]). The
+    /// exact solutions are the same either way.
+    pub reaching_only: bool,
 }
 
 fn geometry<const N: usize>(g: &DynGeometry) -> Geometry<N> {
@@ -224,7 +229,13 @@ fn finish_inputs<const N: usize>(pr: &DynProblem) -> (Pose, [bool; N], [[f64; 2]
     )
 }
 
-fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<Candidates<6, 8>> {
+fn six(
+    plan: &DynPlan,
+    g: &Geometry<6>,
+    pose: &Pose,
+    free: &[f64; 6],
+    mut out: Candidates<6, 8>,
+) -> Option<Candidates<6, 8>> {
     let w = plan.wrist;
     let solver = match plan.solver.as_str() {
         "three_parallel_two_intersecting" => families::three_parallel_two_intersecting,
@@ -235,7 +246,6 @@ fn six(plan: &DynPlan, g: &Geometry<6>, pose: &Pose, free: &[f64; 6]) -> Option<
         "three_parallel" => families::three_parallel,
         _ => return None,
     };
-    let mut out = Candidates::default();
     if plan.reversed {
         solve_reversed(
             &g.reversed(),
@@ -359,7 +369,18 @@ pub fn solve_into(
             Some(c)
         });
     }
-    six_or_locked::<8>(pr, checks, out, |g, free| six(pr.plan, g, &pose, free))
+    six_or_locked::<8>(pr, checks, out, |g, free| {
+        six(pr.plan, g, &pose, free, candidates(pr))
+    })
+}
+
+/// An empty set of candidates, asking for reaching solutions only where `pr` does.
+fn candidates<const N: usize, const K: usize>(pr: &DynProblem) -> Candidates<N, K> {
+    if pr.reaching_only {
+        Candidates::reaching_only()
+    } else {
+        Candidates::default()
+    }
 }
 
 /// A 6-joint solver's candidates on the robot's six joints, or on a 7-joint arm's six

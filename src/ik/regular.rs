@@ -17,6 +17,8 @@
 //! (2√3 · [`NEAR_MISS`]): `finish` would check them with the robot's `fk` only to leave
 //! them out (no answer to a pose the arm reaches), so the lanes leave them out first
 //! (in the h1 ∩ h2 family, the branches whose shoulder misses: its SP2's circles apart).
+//! For a caller that keeps only reaching solutions ([`Candidates::reaching_only`]: a
+//! reachability map), they are left out at a pose no branch reaches too.
 //!
 //! Here: the UR family ([`three_parallel_two_intersecting`]) and the PUMA family
 //! ([`spherical_two_parallel`]); in `regular/spherical_two_intersecting.rs` the family
@@ -158,10 +160,11 @@ fn shoulder(
 const FAR: f64 = 2.0 * 1.732_050_807_568_877_2 * NEAR_MISS;
 
 /// Of the `misses` lanes — an elbow out of reach, the rest of the branch exact — those
-/// whose miss exceeds [`FAR`] where some branch reaches the pose (`reached`, asked only
-/// if there are such lanes): `finish` would check their branches only to leave them out,
-/// as no answer to a pose the arm reaches. None where no branch reaches it (a pose out of
-/// reach keeps every branch's nearest).
+/// whose miss exceeds [`FAR`] where some branch reaches the pose, or the caller keeps
+/// only reaching solutions (`reached`, asked only if there are such lanes): `finish`
+/// would check their branches only to leave them out, as no answer to a pose the arm
+/// reaches, or as none the caller keeps ([`Candidates::reaching_only`]). None otherwise
+/// (a pose out of reach keeps every branch's nearest).
 #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn far_elbows<const L: usize>(
     elbow: &Sp3Lanes,
@@ -347,7 +350,10 @@ fn three_parallel_two_intersecting_lanes(
     let t = fast_atan2_n(ys, xs);
     // Every lane's wrist is exact here: a branch is, where its elbow and q2 are.
     let exact = |l: usize| q3.exact[l / 2] && q2_exact[l];
-    let far = far_elbows(&elbow, d2, q3.exact.map(|e| !e), || (0..8).any(exact));
+    let only_reaching = out.wants_reaching_only();
+    let far = far_elbows(&elbow, d2, q3.exact.map(|e| !e), || {
+        only_reaching || (0..8).any(exact)
+    });
     for (i, q1) in roots_of(t[21], t[20]).into_iter().enumerate() {
         let [q5_plus, q5_minus] = roots_of(t[18], t[i]);
         let (theta, q6) = (t[2 + i], t[4 + i]);
@@ -452,7 +458,8 @@ fn spherical_two_parallel_lanes(
     // q4 and q6 are.
     let misses: [bool; 2] =
         core::array::from_fn(|i| !q3.exact[i] && q4_exact[2 * i] && q6_exact[2 * i]);
-    let far = far_elbows(&elbow, d2, misses, || (0..4).any(exact));
+    let only_reaching = out.wants_reaching_only();
+    let far = far_elbows(&elbow, d2, misses, || only_reaching || (0..4).any(exact));
     // Every angle in one pass: q3's d (2), q2 (4), q5's d (4), q4 (4), q6 (4), q1's d,
     // and the angles φ of the three circles cut.
     let mut ys = [0.0; 22];

@@ -20,6 +20,9 @@ pub struct Candidate<const N: usize> {
 pub struct Candidates<const N: usize, const K: usize> {
     items: [Candidate<N>; K],
     len: usize,
+    /// The caller keeps only the solutions that reach the pose (see
+    /// [`Candidates::reaching_only`]).
+    reaching_only: bool,
 }
 
 impl<const N: usize, const K: usize> Default for Candidates<N, K> {
@@ -30,11 +33,38 @@ impl<const N: usize, const K: usize> Default for Candidates<N, K> {
                 fit: Fit::Exact,
             }; K],
             len: 0,
+            reaching_only: false,
         }
     }
 }
 
 impl<const N: usize, const K: usize> Candidates<N, K> {
+    /// An empty set for a caller that keeps only the solutions that reach the pose — a
+    /// reachability map counting them, `ik_near` choosing among them. At a pose that no
+    /// branch reaches, a solver may then leave out the branches it proves to miss it by
+    /// more than [`NEAR_MISS`] (the lanes solvers of `ik::regular`: an elbow or shoulder
+    /// out of reach, the rest of the branch exact) instead of handing on each one's
+    /// least-squares nearest for `finish` to check with `fk` — none of which could be
+    /// exact. The solutions that reach the pose are the same either way.
+    ///
+    /// ```
+    /// use kinegen::ik::solutions::Candidates;
+    /// assert!(Candidates::<6, 8>::reaching_only().wants_reaching_only());
+    /// assert!(!Candidates::<6, 8>::default().wants_reaching_only());
+    /// ```
+    pub fn reaching_only() -> Self {
+        Candidates {
+            reaching_only: true,
+            ..Default::default()
+        }
+    }
+
+    /// Whether the caller keeps only the solutions that reach the pose
+    /// ([`Candidates::reaching_only`]).
+    pub fn wants_reaching_only(&self) -> bool {
+        self.reaching_only
+    }
+
     /// Add one (ignored when `K` are there already: a solver bug, never silent in tests).
     pub fn push(&mut self, q: [f64; N], fit: Fit) {
         debug_assert!(self.len < K, "more than {K} IK candidates");

@@ -292,7 +292,7 @@ pub(super) fn solutions<'a>(
     scratch: &RefCell<Scratch>,
     out: &'a mut DynSolutions,
 ) -> Result<impl Iterator<Item = &'a [f64]>, CliError> {
-    solver.solutions_into(pose, None, locked, None, scratch, out)?;
+    solver.reaching_into(pose, locked, scratch, out)?;
     let out = &*out;
     Ok((0..out.len())
         .filter(|&i| out.flags(i).exact && out.flags(i).within_limits)

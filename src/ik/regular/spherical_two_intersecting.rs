@@ -80,7 +80,7 @@ pub(super) fn spherical_two_intersecting_lanes(
     let misses: [bool; 4] = core::array::from_fn(|j| {
         j % 2 == 0 && !shoulder.exact[j / 2] && q4_exact[j] && q6_exact[j]
     });
-    let far = if misses.contains(&true) && (0..4).any(exact) {
+    let far = if misses.contains(&true) && (out.wants_reaching_only() || (0..4).any(exact)) {
         far_shoulders(&d, &arm4, (&h1, &h2), [(c1, s1), (c2, s2)], misses)
     } else {
         [false; 4]
