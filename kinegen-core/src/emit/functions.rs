@@ -488,8 +488,8 @@ impl Out<'_> {
                  `kinegen show` prints every one."
             ));
             self.notes.push(format!(
-                "`FORMULAS` lists the first {listed} of {total} formulas (at most {MAX_FORMULAS}); \
-                 `kinegen show` prints every one"
+                "`FORMULAS` lists the first {listed} of the chain's {total} formulas (the most a \
+                 generated constant lists); `kinegen show` prints every one"
             ));
         }
         self.konst(
