@@ -408,7 +408,7 @@ impl Urdf {
         let base = match base {
             Some(b) => self.link(b, "base")?.to_string(),
             None => self
-                .roots()
+                .roots_of(&parents)
                 .first()
                 .copied()
                 .unwrap_or_default()
