@@ -276,17 +276,16 @@ fn inputs(model: &Model, body: &Body) -> Vec<Line> {
     out
 }
 
-/// Identifiers in a body's formulas.
+/// Identifiers in a body's formulas (those starting with a letter).
 fn identifiers(body: &Body) -> BTreeSet<String> {
-    let mut set = BTreeSet::new();
-    for f in body.defs.iter().map(|(_, f)| f).chain(&body.outputs) {
-        for w in f.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
-            if w.starts_with(|c: char| c.is_ascii_alphabetic()) {
-                set.insert(w.to_string());
-            }
-        }
-    }
-    set
+    body.defs
+        .iter()
+        .map(|(_, f)| f)
+        .chain(&body.outputs)
+        .flat_map(|f| kinegen_core::emit::code::identifiers(f))
+        .filter(|w| w.starts_with(|c: char| c.is_ascii_alphabetic()))
+        .map(String::from)
+        .collect()
 }
 
 /// The engine names the sine and cosine of a sum of consecutive joint angles after the

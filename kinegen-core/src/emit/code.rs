@@ -136,8 +136,14 @@ fn bound_names(statement: &str) -> Vec<&str> {
 }
 
 /// The identifiers of a piece of Rust (numbers, with their exponents and suffixes,
-/// skipped).
-fn identifiers(text: &str) -> impl Iterator<Item = &str> {
+/// skipped): the names a formula reads.
+///
+/// ```
+/// use kinegen_core::emit::code::identifiers;
+/// let ids: Vec<&str> = identifiers("t12 * 1.5e-3 + self.d1 * s_k2").collect();
+/// assert_eq!(ids, ["t12", "self", "d1", "s_k2"]);
+/// ```
+pub fn identifiers(text: &str) -> impl Iterator<Item = &str> {
     let bytes = text.as_bytes();
     let mut i = 0;
     std::iter::from_fn(move || {
