@@ -131,33 +131,23 @@ pub fn to_table(chain: &Chain, s: &Stats, missing: &str) -> String {
         .unwrap_or(1);
     // One space at least between columns: `total` is the widest count.
     let w = (digits + 1).max(6);
-    let head = |out: &mut String, title: &str, width: usize| {
+    // One line of the table: a name, then four counts, the total and the `sin_cos`.
+    let line = |out: &mut String, width: usize, name: &str, cells: [String; 6]| {
+        let [add, mul, div, neg, total, trig] = cells;
         let _ = writeln!(
             out,
-            "{title:<width$}{:>w$}{:>w$}{:>w$}{:>w$}{:>t$}{:>r$}",
-            "add",
-            "mul",
-            "div",
-            "neg",
-            "total",
-            "trig",
+            "{name:<width$}{add:>w$}{mul:>w$}{div:>w$}{neg:>w$}{total:>t$}{trig:>r$}",
             t = w + 2,
             r = w + 1
         );
     };
+    let head = |out: &mut String, title: &str, width: usize| {
+        let names = ["add", "mul", "div", "neg", "total", "trig"];
+        line(out, width, title, names.map(String::from));
+    };
     let row_of = |out: &mut String, width: usize, name: &str, o: &OpCount| {
-        let _ = writeln!(
-            out,
-            "{name:<width$}{:>w$}{:>w$}{:>w$}{:>w$}{:>t$}{:>r$}",
-            o.add,
-            o.mul,
-            o.div,
-            o.neg,
-            o.total(),
-            o.trig,
-            t = w + 2,
-            r = w + 1
-        );
+        let counts = [o.add, o.mul, o.div, o.neg, o.total(), o.trig];
+        line(out, width, name, counts.map(|c| c.to_string()));
     };
     let mut out = format!(
         "{} — operations of the generated code (after sharing; a subtraction counts as an add)\n\n",
