@@ -175,7 +175,7 @@ pub struct Orbit {
 
 impl Orbit {
     /// `p`'s orbit about `k`.
-    #[inline]
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn new(k: &V3, p: &V3) -> Orbit {
         let a = k * k.dot(p);
         Orbit {
@@ -332,6 +332,9 @@ impl<const N: usize> Geometry<N> {
     /// let reached = rest.fk(&[q[1], q[2]]);
     /// assert!((reached.p - target.p).norm() < 1e-15 && (reached.r - target.r).norm() < 1e-15);
     /// ```
+    // Inlined where the PC's build has the room: the reversed chain's constant axes fold
+    // into the turn of the pose (Panda `ik_with`: 5 744 → 5 463 instructions).
+    #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn lock_at_pose<const M: usize>(
         &self,
         k: usize,
@@ -379,7 +382,7 @@ pub(crate) fn meet<const N: usize>(g: &Geometry<N>, i: usize, j: usize) -> V3 {
 }
 
 /// [`meet`] for the lines through `p` along `h`.
-#[inline]
+#[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
 fn meet_lines((pi, hi): (&V3, &V3), (pj, hj): (&V3, &V3)) -> V3 {
     // The generated geometries often place a point where the axes meet already (exactly
     // on the other axis): then that point, without the closest-points solve.

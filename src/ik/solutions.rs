@@ -148,6 +148,7 @@ pub const SAME_CONFIGURATION: f64 = 1e-9;
 
 impl<const N: usize, const K: usize, T: Copy + Default> IkSolutions<N, K, T> {
     /// No solutions.
+    #[inline]
     pub fn empty() -> Self {
         IkSolutions {
             items: [IkBranch {
@@ -549,6 +550,8 @@ pub fn vanishing<const F: usize>(factors: &[f64; F]) -> u32 {
 }
 
 /// `q` without entry `k`; `M` must be `N − 1`.
+// Inlined: with `k` a constant where the generated code calls it, six moves.
+#[inline]
 pub fn without<const N: usize, const M: usize>(q: &[f64; N], k: usize) -> [f64; M] {
     let mut out = [0.0; M];
     for (o, (_, x)) in out
