@@ -472,23 +472,29 @@ fn settle<const N: usize>(
     limits: &[[f64; 2]; N],
 ) -> Option<bool> {
     // As the solvers almost always give it — revolute joints within (−π, π], every joint
-    // within its limits (so finite) — a candidate stays as it is: one branch-free test of
-    // all joints. (Limits that hold a whole turn hold every wrapped value: a constant
-    // test where `limits` is the robot's `LIMITS`.)
-    let mut settled = true;
+    // finite — a candidate stays as it is: one branch-free test of all joints. A wrapped
+    // value is moved by a whole turn only into limits that reach past ±π and leave it
+    // out: limits that hold a whole turn hold every wrapped value, and limits within
+    // [−π, π] (the Panda's, the iiwa's) hold `t ± 2π` never — constant tests where
+    // `limits` is the robot's `LIMITS`. (Half the Panda's candidates are outside its
+    // limits: they took the joint-by-joint path below, for the same values.)
+    let (mut settled, mut within_limits) = (true, true);
     for i in 0..N {
         let (t, [lo, hi]) = (q[i], limits[i]);
         // (|t| < π: ±π itself, and NaN, go joint by joint.)
         let wrapped = t.abs() < PI;
-        settled &= match (revolute[i], lo <= -PI && hi >= PI) {
-            (true, true) => wrapped,
-            (true, false) => wrapped & (t >= lo) & (t <= hi),
-            (false, _) => (t >= lo) & (t <= hi) & t.is_finite(),
+        let inside = (t >= lo) & (t <= hi);
+        let turn_moves = (lo < -PI && hi < PI) || (lo > -PI && hi > PI);
+        settled &= match (revolute[i], turn_moves) {
+            (true, false) => wrapped,
+            (true, true) => wrapped & inside,
+            (false, _) => t.is_finite(),
         };
+        within_limits &= inside;
     }
     if settled {
         *out = q;
-        return Some(true);
+        return Some(within_limits);
     }
     // One pass; the flags with `&=`, not `&&`.
     let (mut finite, mut within_limits) = (true, true);
@@ -813,6 +819,54 @@ mod tests {
         }
         s.len = branches.len();
         s
+    }
+
+    /// `settle`'s one test of all joints keeps the values and the flag that the joint-by-
+    /// joint path gives (wrap, a whole turn into the limits where that fits): for limits
+    /// that hold a whole turn, lie within [−π, π], or reach past one end, and a prismatic
+    /// joint, at values about ±π, the limits, NaN and infinities.
+    #[test]
+    fn settling_in_one_test_is_settling_joint_by_joint() {
+        let by_joint = |t: f64, revolute: bool, [lo, hi]: [f64; 2]| {
+            let v = match (revolute, lo <= -PI && hi >= PI) {
+                (true, true) => wrap(t),
+                (true, false) => into_limits(t, [lo, hi]),
+                (false, _) => t,
+            };
+            let within = (lo <= -PI && hi >= PI && revolute) || (v >= lo && v <= hi);
+            (v, (!v.is_nan() && v.is_finite()).then_some(within))
+        };
+        let limits = [
+            [-TAU, TAU],
+            [-PI, PI],
+            [-2.9, 2.9],
+            [-0.02, 3.75],
+            [-3.07, -0.07],
+            [-3.5, 2.0],
+            [-PI, 4.0],
+            [0.0, 1.0],
+        ];
+        let eps = 1e-12;
+        let about = [
+            PI, 2.0, 2.9, 3.07, 3.5, 3.75, 4.0, 0.02, 0.07, 1.0, 6.0, 7.0,
+        ];
+        let near = about
+            .iter()
+            .flat_map(|&x| [x - eps, x, x + eps, eps - x, -x, -x - eps]);
+        let special = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0, -0.0];
+        for &lim in &limits {
+            for revolute in [true, false] {
+                for t in special.into_iter().chain(near.clone()) {
+                    let mut q = [f64::NAN];
+                    let got = settle([t], &mut q, &[revolute], &[lim]);
+                    let (v, want) = by_joint(t, revolute, lim);
+                    assert_eq!(got, want, "t = {t}, revolute {revolute}, limits {lim:?}");
+                    if want.is_some() {
+                        assert_eq!(q[0].to_bits(), v.to_bits(), "t = {t}, limits {lim:?}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]
