@@ -475,9 +475,9 @@ fn settle<const N: usize>(
     // finite — a candidate stays as it is: one branch-free test of all joints. A wrapped
     // value is moved by a whole turn only into limits that reach past ±π and leave it
     // out: limits that hold a whole turn hold every wrapped value, and limits within
-    // [−π, π] (the Panda's, the iiwa's) hold `t ± 2π` never — constant tests where
-    // `limits` is the robot's `LIMITS`. (Half the Panda's candidates are outside its
-    // limits: they took the joint-by-joint path below, for the same values.)
+    // [−π, π] (the iiwa's, all of the Panda's but joint 6's) hold `t ± 2π` never —
+    // constant tests where `limits` is the robot's `LIMITS`. (About half the Panda's
+    // candidates lie outside its limits: this keeps them off the joint-by-joint path.)
     let (mut settled, mut within_limits) = (true, true);
     for i in 0..N {
         let (t, [lo, hi]) = (q[i], limits[i]);
