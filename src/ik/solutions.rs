@@ -466,7 +466,7 @@ fn finish_each<const N: usize, const K: usize, C: Check<N>>(
 // was a `memmove` on a Cortex-M (1.5 KB of flash with its routine).
 #[inline(always)]
 fn settle<const N: usize>(
-    mut q: [f64; N],
+    q: [f64; N],
     out: &mut [f64; N],
     revolute: &[bool; N],
     limits: &[[f64; 2]; N],
@@ -496,6 +496,18 @@ fn settle<const N: usize>(
         *out = q;
         return Some(within_limits);
     }
+    settle_by_joint(q, out, revolute, limits)
+}
+
+/// [`settle`] joint by joint: each revolute joint wrapped, then moved by a whole turn into
+/// its limits where that fits.
+#[inline(always)]
+fn settle_by_joint<const N: usize>(
+    mut q: [f64; N],
+    out: &mut [f64; N],
+    revolute: &[bool; N],
+    limits: &[[f64; 2]; N],
+) -> Option<bool> {
     // One pass; the flags with `&=`, not `&&`.
     let (mut finite, mut within_limits) = (true, true);
     for i in 0..N {
@@ -827,15 +839,6 @@ mod tests {
     /// joint, at values about ±π, the limits, NaN and infinities.
     #[test]
     fn settling_in_one_test_is_settling_joint_by_joint() {
-        let by_joint = |t: f64, revolute: bool, [lo, hi]: [f64; 2]| {
-            let v = match (revolute, lo <= -PI && hi >= PI) {
-                (true, true) => wrap(t),
-                (true, false) => into_limits(t, [lo, hi]),
-                (false, _) => t,
-            };
-            let within = (lo <= -PI && hi >= PI && revolute) || (v >= lo && v <= hi);
-            (v, (!v.is_nan() && v.is_finite()).then_some(within))
-        };
         let limits = [
             [-TAU, TAU],
             [-PI, PI],
@@ -857,16 +860,26 @@ mod tests {
         for &lim in &limits {
             for revolute in [true, false] {
                 for t in special.into_iter().chain(near.clone()) {
-                    let mut q = [f64::NAN];
-                    let got = settle([t], &mut q, &[revolute], &[lim]);
-                    let (v, want) = by_joint(t, revolute, lim);
+                    let (mut got_q, mut want_q) = ([f64::NAN], [f64::NAN]);
+                    let got = settle([t], &mut got_q, &[revolute], &[lim]);
+                    let want = settle_by_joint([t], &mut want_q, &[revolute], &[lim]);
                     assert_eq!(got, want, "t = {t}, revolute {revolute}, limits {lim:?}");
                     if want.is_some() {
-                        assert_eq!(q[0].to_bits(), v.to_bits(), "t = {t}, limits {lim:?}");
+                        let bits = |q: [f64; 1]| q[0].to_bits();
+                        assert_eq!(bits(got_q), bits(want_q), "t = {t}, limits {lim:?}");
                     }
                 }
             }
         }
+        // Values the joint-by-joint path moves: the comparison is not of identities.
+        let mut q = [0.0];
+        assert_eq!(
+            settle([-2.9], &mut q, &[true], &[[-0.02, 3.75]]),
+            Some(true)
+        );
+        assert_eq!(q[0], -2.9 + TAU);
+        assert_eq!(settle([7.0], &mut q, &[true], &[[-2.9, 2.9]]), Some(true));
+        assert_eq!(q[0], 7.0 - TAU);
     }
 
     #[test]
