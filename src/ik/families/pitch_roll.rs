@@ -16,7 +16,7 @@
 
 use crate::ik::geometry::{Angle, Geometry, Pose, M3, V3};
 use crate::ik::solutions::Candidates;
-use crate::ik::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit};
+use crate::ik::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit, MERGE_DISTANCE};
 
 /// **h2 ∥ h3 ∥ h4 after h1, with five joints the tool point on axis 5** (`N` = 4 or 5;
 /// `d = p − p1`, `R = R0T RTᵀ`, `θ = q2 ± q3 ± q4` the turn about the parallel axes, signs
@@ -25,7 +25,11 @@ use crate::ik::subproblems::{sp1, sp1_angle, sp2, sp3, sp4, wrap, Fit};
 /// 1. q1 — SP4: `h2ᵀ rot(−h1, q1) d = h2ᵀ (pT − p1)` (joints 2–5 keep the tool point's
 ///    component along h2; two roots: the arm's plane, reached facing either way). With
 ///    the tool point on axis 1 that leaves q1 free, and (q1, θ) — SP2: `rot(−h1, q1) R v
-///    = rot(h2, θ) v` — come from the approach instead.
+///    = rot(h2, θ) v` — come from the approach instead. Where the two planes merge (the
+///    tool point on the cylinder about axis 1 its offset along h2 draws: a double root,
+///    placed only to ~3e-6 rad), the arm is not singular — the approach still fixes q1 —
+///    so q1 is the root of the approach's SP4, `h2ᵀ rot(−h1, q1) R v = h2ᵀ v`, nearest to
+///    it, and the branch is checked on `fk` ([`Fit::Checked`]).
 /// 2. θ — SP1: `rot(h2, θ) v = rot(−h1, q1) R v` (least squares where the approach leaves
 ///    the arm's plane). With four joints the whole rotation must match: θ is the turn
 ///    about h2 nearest to `rot(−h1, q1) R` over a basis of the plane ⟂ h2, and each
@@ -83,6 +87,12 @@ pub fn pitch_roll<const N: usize, const K: usize>(
             *slot = (*q1, Some(*t), fit.and(pitch_fit).and(Fit::Double));
         }
         n
+    } else if let (1, Fit::Double | Fit::LeastSquares) = (t1.n, t1.fit) {
+        planes[0] = match facing(&h1, &h2, &a, &v, t1.angles[0]) {
+            Some(q1) => (q1, None, Fit::Checked),
+            None => (t1.angles[0], None, t1.fit),
+        };
+        1
     } else {
         for (slot, q1) in planes.iter_mut().zip(t1.as_slice()) {
             *slot = (*q1, None, t1.fit);
@@ -122,6 +132,24 @@ pub fn pitch_roll<const N: usize, const K: usize>(
     }
 }
 
+/// Where the position leaves the arm's plane at a double root `merged` (see step 1 of
+/// [`pitch_roll`]): the root of `h2ᵀ rot(−h1, q1) a = h2ᵀ v` — the approach `a` in the
+/// plane — within [`MERGE_DISTANCE`] of it, if the approach has two distinct roots (else,
+/// or if neither is that near, the pose is off the arm's set there: `None`).
+#[inline]
+fn facing(h1: &V3, h2: &V3, a: &V3, v: &V3, merged: Angle) -> Option<Angle> {
+    let t = sp4(h2, a, &(-h1), h2.dot(v), merged.theta);
+    if t.fit != Fit::Exact {
+        return None;
+    }
+    let off = |q: &Angle| wrap(q.theta - merged.theta).abs();
+    t.as_slice()
+        .iter()
+        .copied()
+        .filter(|q1| off(q1) <= MERGE_DISTANCE)
+        .min_by(|x, y| off(x).total_cmp(&off(y)))
+}
+
 /// The rotation about `k` nearest to `m` (least squares over the orthonormal `basis` of
 /// the plane ⟂ `k`): `θ = atan2(Σ kᵀ (x × m x), Σ xᵀ m x)`.
 #[inline]
@@ -139,6 +167,7 @@ fn pitch(k: &V3, basis: &[V3; 2], m: &M3) -> Angle {
 mod tests {
     use super::*;
     use crate::ik::geometry::rot;
+    use crate::ik::solutions::EXACT_TOLERANCE;
     use core::f64::consts::FRAC_PI_2;
 
     /// A WidowX-like arm: waist about z, shoulder, elbow and wrist about y, the roll about
@@ -188,6 +217,35 @@ mod tests {
         for c in out.as_slice().iter().filter(|c| c.fit == Fit::Double) {
             let t = g.fk(&c.q);
             assert!((t.p - pose.p).norm() <= 1e-15 && (t.r - pose.r).norm() <= 1e-14);
+        }
+    }
+
+    /// Where the tool point lies on the cylinder about axis 1 that its offset along h2
+    /// draws, the two arm planes of step 1 merge (a double root, placed to ~3e-6 rad), but
+    /// the arm is not singular there: the approach fixes q1, and the branch reaches the
+    /// pose (it came ~1e-6 rad off, a least-squares branch missing by ~1e-7, before).
+    #[test]
+    fn merged_arm_planes_take_q1_from_the_approach() {
+        let mut g = arm();
+        // The wrist and the tool 0.05 off the arm's plane, along h2: with (q1, 0, π/2,
+        // π/2, q5) the tool point lies 0.05 from axis 1, on the cylinder.
+        g.p[3].y = 0.05;
+        g.p[4].y = 0.05;
+        g.p_tool.y = 0.05;
+        for dq in [0.0, 1e-9, -1e-9, 1e-7, -1e-7, 2e-6, -2e-6] {
+            let q = [0.7, dq, FRAC_PI_2, FRAC_PI_2 - 0.3 * dq, 0.3];
+            let pose = g.fk(&q);
+            let out = solved(&g, &pose, &[0.0; 5]);
+            let found = out.as_slice().iter().find(|c| gap(&c.q, &q) <= 1e-9);
+            let c = found.unwrap_or_else(|| panic!("{q:?} not among {:?}", out.as_slice()));
+            // Exact as `finish` counts it (the arm reaches 0.8 m).
+            let t = g.fk(&c.q);
+            let miss = (t.p - pose.p).amax().max((t.r - pose.r).amax());
+            assert!(miss <= EXACT_TOLERANCE, "{c:?} misses {pose:?} by {miss:e}");
+            // Taken from the approach, checked on fk by `finish`.
+            if c.fit != Fit::Exact {
+                assert_eq!(c.fit, Fit::Checked, "{c:?}");
+            }
         }
     }
 

@@ -61,6 +61,10 @@ const EPS: f64 = f64::EPSILON;
 /// afterwards anyway (its fit is `Double`).
 pub(super) const MERGE_RELATIVE: f64 = 1e-11;
 
+/// How far apart two roots [`MERGE_RELATIVE`] takes as one may be: `2√1e-11` rad (a
+/// merged root lies within half of it of each).
+pub const MERGE_DISTANCE: f64 = 6.324_555_320_336_758e-6;
+
 /// Relative size (squared) of a vector's component off an axis below which the vector is
 /// taken to lie on the axis: the rotation about that axis leaves it where it is.
 pub const ON_AXIS: f64 = 1e-18;
@@ -361,6 +365,11 @@ mod tests {
     /// The unit vector along `(x, y, z)` (for the subproblems' tests).
     pub(super) fn unit(x: f64, y: f64, z: f64) -> V3 {
         V3::new(x, y, z).normalize()
+    }
+
+    #[test]
+    fn merge_distance_is_twice_the_root_of_merge_relative() {
+        assert_eq!(MERGE_DISTANCE, 2.0 * MERGE_RELATIVE.sqrt());
     }
 
     #[test]
