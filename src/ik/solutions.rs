@@ -536,16 +536,14 @@ pub fn residual(t: &[[f64; 4]; 4], pose: &Pose) -> f64 {
     // `max`'s NaN and signed-zero handling — one `maxsd` an entry, not six instructions
     // (a solver measuring every solution calls this twelve times a solution).
     let mut e: f64 = 0.0;
-    let mut worse = |d: f64| {
-        if d > e {
-            e = d;
-        }
-    };
     for (i, row) in t.iter().take(3).enumerate() {
-        for (j, x) in row.iter().take(3).enumerate() {
-            worse((x - pose.r[(i, j)]).abs());
+        for (j, x) in row.iter().enumerate() {
+            let target = if j < 3 { pose.r[(i, j)] } else { pose.p[i] };
+            let d = (x - target).abs();
+            if d > e {
+                e = d;
+            }
         }
-        worse((row[3] - pose.p[i]).abs());
     }
     e
 }
