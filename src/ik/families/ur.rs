@@ -6,12 +6,13 @@
 
 use super::{regular_first, Solvers, WristPair};
 use crate::ik::geometry::{flat, mv, rot, Angle, Geometry, Pose, M3, V3};
+use crate::ik::polish::polish;
 use crate::ik::regular;
 use crate::ik::setup::ThreeParallel;
-use crate::ik::solutions::Candidates;
+use crate::ik::solutions::{Candidates, EXACT_TOLERANCE};
 use crate::ik::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_sides, sp3, sp4, wrap, Fit,
-    Plane, Sp3, Sp4,
+    Plane, Roots, Sp3, Sp4,
 };
 use core::f64::consts::PI;
 
@@ -73,111 +74,181 @@ pub fn three_parallel_two_intersecting_by_branch(
         let arm = mv(&r1t, &p16) - p12;
         let arm_ = plane.split(&arm);
         let t5 = wrist5.solve(h2.dot(&target_h6), free[4]);
-        // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
-        let mut turned: Option<(Angle, Fit, (f64, Fit))> = None;
-        for (k, q5) in t5.as_slice().iter().enumerate() {
-            // q6 — SP1: R6 h5 = (R14 R5)ᵀ R1ᵀ R06 h5 with R14 = rot(h2, θ): with θ known,
-            // one per (q1, q5), whichever elbow.
-            let q6_for = |r5: &M3, r14: &M3| {
-                let x = mv(&r5.transpose(), &mv(&r14.transpose(), &target_h5));
-                sp1(&h5, &x, &h6, free[5])
-            };
-            let (mode, ft) = match (k, turned) {
-                // (θ + π, the other q5, q6 + π) solves the wrist like (θ, q5, q6).
-                (1, Some((t, ft, (q6, f6)))) => {
-                    let q6 = (wrap(q6 + PI), f6);
-                    (
-                        Arm::Theta {
-                            t: half_turn(t),
-                            q6,
-                        },
-                        ft,
-                    )
+        // Steps 4–6 for the roots `t5` of q5, into `out`.
+        let wrist = |t5: Roots, out: &mut Candidates<6, 8>| {
+            // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
+            let mut turned: Option<(Angle, Fit, (f64, Fit))> = None;
+            for (k, q5) in t5.as_slice().iter().enumerate() {
+                // q6 — SP1: R6 h5 = (R14 R5)ᵀ R1ᵀ R06 h5 with R14 = rot(h2, θ): with θ known,
+                // one per (q1, q5), whichever elbow.
+                let q6_for = |r5: &M3, r14: &M3| {
+                    let x = mv(&r5.transpose(), &mv(&r14.transpose(), &target_h5));
+                    sp1(&h5, &x, &h6, free[5])
+                };
+                let (mode, ft) = match (k, turned) {
+                    // (θ + π, the other q5, q6 + π) solves the wrist like (θ, q5, q6).
+                    (1, Some((t, ft, (q6, f6)))) => {
+                        let q6 = (wrap(q6 + PI), f6);
+                        (
+                            Arm::Theta {
+                                t: half_turn(t),
+                                q6,
+                            },
+                            ft,
+                        )
+                    }
+                    _ => {
+                        let r5 = q5.rot(&h5);
+                        // θ known, and with it q6.
+                        let theta_known = |t: Angle| Arm::Theta {
+                            t,
+                            q6: q6_for(&r5, &t.rot(&h2)),
+                        };
+                        let (theta, ft) = sp1_angle(&mv(&r5, &h6), &target_h6, &h2, 0.0);
+                        // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist
+                        // singularity q4 = free — or, when that q4 puts the wrist out of the
+                        // elbow's reach, θ chosen mid-range of what the elbow can reach,
+                        // nearest to free's.
+                        let mode = if ft == Fit::Free {
+                            let q4 = free[3];
+                            let known = p34 + mv(&rot(&h4, q4), &p45);
+                            let t = sp3(
+                                &flat(&h2, &known),
+                                &flat(&h2, &(-p23)),
+                                &h3,
+                                flat(&h2, &arm).norm(),
+                                0.0,
+                            );
+                            if t.fit == Fit::LeastSquares {
+                                let hint = free[1] + s3 * free[2] + s4 * free[3];
+                                let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
+                                theta_known(Angle::new(theta))
+                            } else {
+                                Arm::Q4 { q4, known, r5 }
+                            }
+                        } else {
+                            theta_known(theta)
+                        };
+                        (mode, ft)
+                    }
+                };
+                let fit = t1.fit.and(t5.fit).and(ft);
+                if let (0, WristPair::HalfTurn, Arm::Theta { t, q6 }) = (k, pair, mode) {
+                    // θ from the wrist (not the singular branch's choice).
+                    if ft != Fit::Free {
+                        turned = Some((t, ft, q6));
+                    }
                 }
-                _ => {
-                    let r5 = q5.rot(&h5);
-                    // θ known, and with it q6.
-                    let theta_known = |t: Angle| Arm::Theta {
-                        t,
-                        q6: q6_for(&r5, &t.rot(&h2)),
-                    };
-                    let (theta, ft) = sp1_angle(&mv(&r5, &h6), &target_h6, &h2, 0.0);
-                    // The arm (q2, q3, q4): θ known (q4 from it), or at the wrist
-                    // singularity q4 = free — or, when that q4 puts the wrist out of the
-                    // elbow's reach, θ chosen mid-range of what the elbow can reach,
-                    // nearest to free's.
-                    let mode = if ft == Fit::Free {
-                        let q4 = free[3];
-                        let known = p34 + mv(&rot(&h4, q4), &p45);
-                        let t = sp3(
+                match mode {
+                    Arm::Theta { t, q6: (q6, f6) } => {
+                        // In the plane ⟂ h2 (the components along h2 agree by step 2): the
+                        // wrist centre's offset `reach = arm − rot(h2, θ) p45` from joint 2,
+                        // and per q3 the arm `p23 + R3 p34` that q2 turns onto it.
+                        let reach = arm_ - p45_.turn(&t, 1.0);
+                        let t3 = elbow.solve(reach.flat_norm(), free[2]);
+                        // q2 — SP1 for each elbow (with two, their atan2 side by side).
+                        let sides =
+                            |q3: &Angle| sp1_planar_sides(&(p23_ + p34_.turn(q3, s3)), &reach);
+                        let q2s = if t3.n == 2 {
+                            sp1_angles_2([sides(&t3.angles[0]), sides(&t3.angles[1])], [free[1]; 2])
+                        } else {
+                            [sp1_from_sides(sides(&t3.angles[0]), free[1]); 2]
+                        };
+                        for (q3, (q2, f2)) in t3.as_slice().iter().zip(q2s) {
+                            let q4 = wrap(s4 * (t.theta - q2 - s3 * q3.theta));
+                            out.push(
+                                [q1.theta, q2, q3.theta, q4, q5.theta, q6],
+                                fit.and(t3.fit).and(f2).and(f6),
+                            );
+                        }
+                    }
+                    Arm::Q4 { q4, known, r5 } => {
+                        // θ, so q6, depends on the elbow: found per q3.
+                        let t3 = sp3(
                             &flat(&h2, &known),
                             &flat(&h2, &(-p23)),
                             &h3,
                             flat(&h2, &arm).norm(),
-                            0.0,
+                            free[2],
                         );
-                        if t.fit == Fit::LeastSquares {
-                            let hint = free[1] + s3 * free[2] + s4 * free[3];
-                            let theta = mid_range_theta(&h2, &arm, &p23, &p34, &p45, hint);
-                            theta_known(Angle::new(theta))
-                        } else {
-                            Arm::Q4 { q4, known, r5 }
+                        for q3 in t3.as_slice() {
+                            let (q2, f2) =
+                                sp1(&(p23 + mv(&q3.rot(&h3), &known)), &arm, &h2, free[1]);
+                            let (q6, f6) = q6_for(&r5, &rot(&h2, q2 + s3 * q3.theta + s4 * q4));
+                            out.push(
+                                [q1.theta, q2, q3.theta, q4, q5.theta, q6],
+                                fit.and(t3.fit).and(f2).and(f6),
+                            );
                         }
-                    } else {
-                        theta_known(theta)
-                    };
-                    (mode, ft)
-                }
-            };
-            let fit = t1.fit.and(t5.fit).and(ft);
-            if let (0, WristPair::HalfTurn, Arm::Theta { t, q6 }) = (k, pair, mode) {
-                // θ from the wrist (not the singular branch's choice).
-                if ft != Fit::Free {
-                    turned = Some((t, ft, q6));
-                }
-            }
-            match mode {
-                Arm::Theta { t, q6: (q6, f6) } => {
-                    // In the plane ⟂ h2 (the components along h2 agree by step 2): the
-                    // wrist centre's offset `reach = arm − rot(h2, θ) p45` from joint 2,
-                    // and per q3 the arm `p23 + R3 p34` that q2 turns onto it.
-                    let reach = arm_ - p45_.turn(&t, 1.0);
-                    let t3 = elbow.solve(reach.flat_norm(), free[2]);
-                    // q2 — SP1 for each elbow (with two, their atan2 side by side).
-                    let sides = |q3: &Angle| sp1_planar_sides(&(p23_ + p34_.turn(q3, s3)), &reach);
-                    let q2s = if t3.n == 2 {
-                        sp1_angles_2([sides(&t3.angles[0]), sides(&t3.angles[1])], [free[1]; 2])
-                    } else {
-                        [sp1_from_sides(sides(&t3.angles[0]), free[1]); 2]
-                    };
-                    for (q3, (q2, f2)) in t3.as_slice().iter().zip(q2s) {
-                        let q4 = wrap(s4 * (t.theta - q2 - s3 * q3.theta));
-                        out.push(
-                            [q1.theta, q2, q3.theta, q4, q5.theta, q6],
-                            fit.and(t3.fit).and(f2).and(f6),
-                        );
-                    }
-                }
-                Arm::Q4 { q4, known, r5 } => {
-                    // θ, so q6, depends on the elbow: found per q3.
-                    let t3 = sp3(
-                        &flat(&h2, &known),
-                        &flat(&h2, &(-p23)),
-                        &h3,
-                        flat(&h2, &arm).norm(),
-                        free[2],
-                    );
-                    for q3 in t3.as_slice() {
-                        let (q2, f2) = sp1(&(p23 + mv(&q3.rot(&h3), &known)), &arm, &h2, free[1]);
-                        let (q6, f6) = q6_for(&r5, &rot(&h2, q2 + s3 * q3.theta + s4 * q4));
-                        out.push(
-                            [q1.theta, q2, q3.theta, q4, q5.theta, q6],
-                            fit.and(t3.fit).and(f2).and(f6),
-                        );
                     }
                 }
             }
+        };
+        let merged = t5.n == 1 && matches!(t5.fit, Fit::Double | Fit::LeastSquares);
+        match merged.then(|| wrist5.split(h2.dot(&target_h6))).flatten() {
+            Some(roots) => split_wrist(g, pose, wrist, t5, roots, out),
+            None => wrist(t5, out),
         }
+    }
+}
+
+/// A q5 merged into a double root (two roots closer than SP4's merge distance, `2√1e-11
+/// ≈ 6e-6` rad) whose branches miss the pose by more than rounding: the two roots were
+/// both real — the wrist a few µrad from its singularity, not at it, where q4 is not
+/// free — so both are solved (`wrist`: steps 4–6 for given roots), polished on `fk`
+/// (θ and q6 carry the rounding amplified by the inverse of the distance to the
+/// singularity) and flagged `Double`, for `finish` to check. The merged branches stay
+/// where they reach the pose to rounding (the wrist at its singularity: q4 from `free`
+/// is then the answer) or the split ones miss it by as much.
+#[cold]
+fn split_wrist(
+    g: &Geometry<6>,
+    pose: &Pose,
+    wrist: impl Fn(Roots, &mut Candidates<6, 8>),
+    merged: Roots,
+    roots: [Angle; 2],
+    out: &mut Candidates<6, 8>,
+) {
+    let miss = |q: &[f64; 6]| {
+        let at = g.fk(q);
+        (at.p - pose.p).amax().max((at.r - pose.r).amax())
+    };
+    let mut one = Candidates::<6, 8>::default();
+    wrist(merged, &mut one);
+    let merged_miss = one
+        .as_slice()
+        .iter()
+        .map(|c| miss(&c.q))
+        .fold(f64::INFINITY, f64::min);
+    if merged_miss <= EXACT_TOLERANCE {
+        for c in one.as_slice() {
+            out.push(c.q, c.fit);
+        }
+        return;
+    }
+    let pair = Roots {
+        angles: roots,
+        n: 2,
+        fit: Fit::Double,
+    };
+    let mut two = Candidates::<6, 8>::default();
+    wrist(pair, &mut two);
+    // Each split branch polished, kept where it comes closer than the merged ones (a
+    // root whose elbow cannot reach the wrist centre stays far off: left out).
+    let mut kept = Candidates::<6, 8>::default();
+    for c in two.as_slice() {
+        let q = polish(g, c.q, pose).map(wrap);
+        if miss(&q) < merged_miss {
+            kept.push(q, c.fit.and(Fit::Double));
+        }
+    }
+    let chosen = if kept.as_slice().is_empty() {
+        &one
+    } else {
+        &kept
+    };
+    for c in chosen.as_slice() {
+        out.push(c.q, c.fit);
     }
 }
 
@@ -255,6 +326,40 @@ mod tests {
             assert!(
                 (0..6).all(|i| wrap(a.q[i] - b.q[i]).abs() < 1e-12),
                 "{a:?} {b:?}"
+            );
+        }
+    }
+
+    /// A wrist a few µrad from its singularity (q5 closer to 0 than SP4's merge distance,
+    /// `2√1e-11` rad, lets the two roots ±q5 merge): not singular, so q4 is not free — the
+    /// merged branch misses the pose by about |q5| (it gave only least-squares branches,
+    /// 2.8e-6 off, and `ik_near` jumped to another shoulder). The two roots are solved
+    /// instead and polished; the generating configuration is among them, reaching the pose.
+    #[test]
+    fn a_wrist_microradians_from_its_singularity_is_split() {
+        let g = ur5();
+        for (q5, q3) in [(2.8e-6, 0.5), (-1e-6, 1.4), (3.1e-6, 0.0), (1e-7, -0.7)] {
+            let q = [-1.1, 0.3, q3, -0.6, q5, 2.0];
+            let pose = g.fk(&q);
+            let sols = solved(
+                three_parallel_two_intersecting,
+                &g,
+                &pose,
+                &[0.0; 6],
+                WristPair::HalfTurn,
+            );
+            let hit = sols
+                .as_slice()
+                .iter()
+                // (Found to ~1e-16 / |q5| rad: the wrist's conditioning.)
+                .find(|c| (0..6).all(|i| wrap(c.q[i] - q[i]).abs() < 1e-7))
+                .unwrap_or_else(|| panic!("{q:?} not among {:?}", sols.as_slice()));
+            let t = g.fk(&hit.q);
+            let miss = (t.p - pose.p).amax().max((t.r - pose.r).amax());
+            assert!(miss <= EXACT_TOLERANCE, "{hit:?} misses by {miss:e}");
+            assert!(
+                hit.fit >= Fit::Double,
+                "{hit:?}: near a singularity, checked"
             );
         }
     }
