@@ -65,6 +65,12 @@ impl<const N: usize, const K: usize> Candidates<N, K> {
         self.reaching_only
     }
 
+    /// The first `len` only (a solver taking back what it pushed last).
+    #[cfg_attr(feature = "small-ik", allow(dead_code))]
+    pub(crate) fn truncate(&mut self, len: usize) {
+        self.len = self.len.min(len);
+    }
+
     /// Add one (ignored when `K` are there already: a solver bug, never silent in tests).
     pub fn push(&mut self, q: [f64; N], fit: Fit) {
         debug_assert!(self.len < K, "more than {K} IK candidates");

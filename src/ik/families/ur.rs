@@ -6,13 +6,18 @@
 
 use super::{regular_first, Solvers, WristPair};
 use crate::ik::geometry::{flat, mv, rot, Angle, Geometry, Pose, M3, V3};
+#[cfg(not(feature = "small-ik"))]
 use crate::ik::polish::polish;
 use crate::ik::regular;
 use crate::ik::setup::ThreeParallel;
-use crate::ik::solutions::{Candidates, EXACT_TOLERANCE};
+use crate::ik::solutions::Candidates;
+#[cfg(not(feature = "small-ik"))]
+use crate::ik::solutions::EXACT_TOLERANCE;
+#[cfg(not(feature = "small-ik"))]
+use crate::ik::subproblems::Roots;
 use crate::ik::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_sides, sp3, sp4, wrap, Fit,
-    Plane, Roots, Sp3, Sp4,
+    Plane, Sp3, Sp4,
 };
 use core::f64::consts::PI;
 
@@ -74,8 +79,24 @@ pub fn three_parallel_two_intersecting_by_branch(
         let arm = mv(&r1t, &p16) - p12;
         let arm_ = plane.split(&arm);
         let t5 = wrist5.solve(h2.dot(&target_h6), free[4]);
-        // Steps 4–6 for the roots `t5` of q5, into `out`.
-        let wrist = |t5: Roots, out: &mut Candidates<6, 8>| {
+        // Two roots of q5 merged into one (see `split_wrist`), for a second pass where
+        // its branches miss the pose. (Not in the size-first build, `small-ik`: 1.6 KB of
+        // flash on a Cortex-M4F, past its budget; there such a wrist keeps its merged,
+        // least-squares branches.)
+        #[cfg(not(feature = "small-ik"))]
+        let (split, start, mut merged, mut t5) = (
+            if t5.n == 1 && matches!(t5.fit, Fit::Double | Fit::LeastSquares) {
+                wrist5.split(h2.dot(&target_h6))
+            } else {
+                None
+            },
+            out.as_slice().len(),
+            None::<Candidates<6, 8>>,
+            t5,
+        );
+        // One pass, and a second on the split roots where the first was a merged one.
+        #[cfg_attr(feature = "small-ik", allow(clippy::never_loop))]
+        loop {
             // WristPair::HalfTurn: the first root's θ, its fit and q6, for the second root.
             let mut turned: Option<(Angle, Fit, (f64, Fit))> = None;
             for (k, q5) in t5.as_slice().iter().enumerate() {
@@ -183,72 +204,95 @@ pub fn three_parallel_two_intersecting_by_branch(
                     }
                 }
             }
-        };
-        let merged = t5.n == 1 && matches!(t5.fit, Fit::Double | Fit::LeastSquares);
-        match merged.then(|| wrist5.split(h2.dot(&target_h6))).flatten() {
-            Some(roots) => split_wrist(g, pose, wrist, t5, roots, out),
-            None => wrist(t5, out),
+            #[cfg(not(feature = "small-ik"))]
+            match (split, merged.take()) {
+                (Some(roots), None) => {
+                    if let Some(one) = split_wrist(g, pose, out, start) {
+                        merged = Some(one);
+                        t5 = Roots {
+                            angles: roots,
+                            n: 2,
+                            fit: Fit::Double,
+                        };
+                        continue;
+                    }
+                }
+                (Some(_), Some(one)) => keep_closer(g, pose, out, start, &one),
+                _ => {}
+            }
+            break;
         }
     }
 }
 
+/// How far `fk(q)` is from `pose` (largest entry).
+#[cfg(not(feature = "small-ik"))]
+fn miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
+    let at = g.fk(q);
+    (at.p - pose.p).amax().max((at.r - pose.r).amax())
+}
+
 /// A q5 merged into a double root (two roots closer than SP4's merge distance, `2√1e-11
-/// ≈ 6e-6` rad) whose branches miss the pose by more than rounding: the two roots were
-/// both real — the wrist a few µrad from its singularity, not at it, where q4 is not
-/// free — so both are solved (`wrist`: steps 4–6 for given roots), polished on `fk`
-/// (θ and q6 carry the rounding amplified by the inverse of the distance to the
-/// singularity) and flagged `Double`, for `finish` to check. The merged branches stay
-/// where they reach the pose to rounding (the wrist at its singularity: q4 from `free`
-/// is then the answer) or the split ones miss it by as much.
+/// ≈ 6e-6` rad) whose branches — `out` from `start` — miss the pose by more than
+/// rounding: the two roots were both real, the wrist a few µrad from its singularity and
+/// not at it, where q4 is not free (the merged branch, taking it so, misses by about
+/// |q5|). Then the merged branches are taken out of `out` and returned, for the caller
+/// to solve both roots in their place ([`keep_closer`]); `None` where they reach the
+/// pose (the wrist at its singularity: q4 from `free` is the answer).
+#[cfg(not(feature = "small-ik"))]
 #[cold]
 fn split_wrist(
     g: &Geometry<6>,
     pose: &Pose,
-    wrist: impl Fn(Roots, &mut Candidates<6, 8>),
-    merged: Roots,
-    roots: [Angle; 2],
     out: &mut Candidates<6, 8>,
+    start: usize,
+) -> Option<Candidates<6, 8>> {
+    let mut one = Candidates::default();
+    for c in &out.as_slice()[start..] {
+        one.push(c.q, c.fit);
+    }
+    let closest = one
+        .as_slice()
+        .iter()
+        .map(|c| miss(g, pose, &c.q))
+        .fold(f64::INFINITY, f64::min);
+    (closest > EXACT_TOLERANCE).then(|| {
+        out.truncate(start);
+        one
+    })
+}
+
+/// The split roots' branches (`out` from `start`) polished on `fk` — θ and q6 carry the
+/// rounding amplified by the inverse of the distance to the singularity — and flagged
+/// `Double` (`finish` checks them), each kept where it comes closer to the pose than the
+/// merged branches `one` (a root whose elbow cannot reach the wrist centre stays far
+/// off); the merged branches again where none does.
+#[cfg(not(feature = "small-ik"))]
+#[cold]
+fn keep_closer(
+    g: &Geometry<6>,
+    pose: &Pose,
+    out: &mut Candidates<6, 8>,
+    start: usize,
+    one: &Candidates<6, 8>,
 ) {
-    let miss = |q: &[f64; 6]| {
-        let at = g.fk(q);
-        (at.p - pose.p).amax().max((at.r - pose.r).amax())
-    };
-    let mut one = Candidates::<6, 8>::default();
-    wrist(merged, &mut one);
     let merged_miss = one
         .as_slice()
         .iter()
-        .map(|c| miss(&c.q))
+        .map(|c| miss(g, pose, &c.q))
         .fold(f64::INFINITY, f64::min);
-    if merged_miss <= EXACT_TOLERANCE {
+    let two = *out;
+    out.truncate(start);
+    for c in &two.as_slice()[start..] {
+        let q = polish(g, c.q, pose).map(wrap);
+        if miss(g, pose, &q) < merged_miss {
+            out.push(q, c.fit.and(Fit::Double));
+        }
+    }
+    if out.as_slice().len() == start {
         for c in one.as_slice() {
             out.push(c.q, c.fit);
         }
-        return;
-    }
-    let pair = Roots {
-        angles: roots,
-        n: 2,
-        fit: Fit::Double,
-    };
-    let mut two = Candidates::<6, 8>::default();
-    wrist(pair, &mut two);
-    // Each split branch polished, kept where it comes closer than the merged ones (a
-    // root whose elbow cannot reach the wrist centre stays far off: left out).
-    let mut kept = Candidates::<6, 8>::default();
-    for c in two.as_slice() {
-        let q = polish(g, c.q, pose).map(wrap);
-        if miss(&q) < merged_miss {
-            kept.push(q, c.fit.and(Fit::Double));
-        }
-    }
-    let chosen = if kept.as_slice().is_empty() {
-        &one
-    } else {
-        &kept
-    };
-    for c in chosen.as_slice() {
-        out.push(c.q, c.fit);
     }
 }
 
@@ -335,8 +379,11 @@ mod tests {
     /// merged branch misses the pose by about |q5| (it gave only least-squares branches,
     /// 2.8e-6 off, and `ik_near` jumped to another shoulder). The two roots are solved
     /// instead and polished; the generating configuration is among them, reaching the pose.
+    /// (The size-first build keeps the merged branches: see the solver.)
     #[test]
+    #[cfg(not(feature = "small-ik"))]
     fn a_wrist_microradians_from_its_singularity_is_split() {
+        use crate::ik::solutions::EXACT_TOLERANCE;
         let g = ur5();
         for (q5, q3) in [(2.8e-6, 0.5), (-1e-6, 1.4), (3.1e-6, 0.0), (1e-7, -0.7)] {
             let q = [-1.1, 0.3, q3, -0.6, q5, 2.0];
