@@ -61,8 +61,9 @@ const EPS: f64 = f64::EPSILON;
 /// afterwards anyway (its fit is `Double`).
 pub(super) const MERGE_RELATIVE: f64 = 1e-11;
 
-/// How far apart two roots [`MERGE_RELATIVE`] takes as one may be: `2√1e-11` rad (a
-/// merged root lies within half of it of each).
+/// How far apart two roots that a subproblem takes as one double root may be (a
+/// discriminant below `1e-11 r²`): `2√1e-11` rad; a merged root lies within half of it
+/// of each.
 pub const MERGE_DISTANCE: f64 = 6.324_555_320_336_758e-6;
 
 /// Relative size (squared) of a vector's component off an axis below which the vector is
