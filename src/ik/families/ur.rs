@@ -12,8 +12,6 @@ use crate::ik::regular;
 use crate::ik::setup::ThreeParallel;
 use crate::ik::solutions::Candidates;
 #[cfg(not(feature = "small-ik"))]
-use crate::ik::solutions::EXACT_TOLERANCE;
-#[cfg(not(feature = "small-ik"))]
 use crate::ik::subproblems::Roots;
 use crate::ik::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_sides, sp3, sp4, wrap, Fit,
@@ -234,11 +232,12 @@ fn miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
 
 /// A q5 merged into a double root (two roots closer than SP4's merge distance, `2√1e-11
 /// ≈ 6e-6` rad) whose branches — `out` from `start` — miss the pose by more than
-/// rounding: the two roots were both real, the wrist a few µrad from its singularity and
-/// not at it, where q4 is not free (the merged branch, taking it so, misses by about
-/// |q5|). Then the merged branches are taken out of `out` and returned, for the caller
-/// to solve both roots in their place ([`keep_closer`]); `None` where they reach the
-/// pose (the wrist at its singularity: q4 from `free` is the answer).
+/// [`ROUNDED_POSE`]: the two roots were both real, the wrist a few µrad from its
+/// singularity and not at it, where q4 is not free (the merged branch, taking it so,
+/// misses by about |q5|). Then the merged branches are taken out of `out` and returned,
+/// for the caller to solve both roots in their place ([`keep_closer`]); `None` where
+/// they come closer (the wrist at its singularity, to rounding: q4 from `free` is the
+/// answer).
 #[cfg(not(feature = "small-ik"))]
 #[cold]
 fn split_wrist(
@@ -256,7 +255,7 @@ fn split_wrist(
         .iter()
         .map(|c| miss(g, pose, &c.q))
         .fold(f64::INFINITY, f64::min);
-    (closest > EXACT_TOLERANCE).then(|| {
+    (closest > ROUNDED_POSE).then(|| {
         out.truncate(start);
         one
     })
@@ -295,6 +294,15 @@ fn keep_closer(
         }
     }
 }
+
+/// How far (largest entry) the merged branches of a wrist may miss the pose and still
+/// stand for it, q4 taken from `free` ([`split_wrist`]): a pose rounded to `f32` (the
+/// f32 `ik` solves it in f64) leaves a wrist at its singularity ~1e-7 from it, and there
+/// the merged branch — exact at the f32 tolerance — keeps `ik_near` continuous. A wrist
+/// of an f64 pose this near its singularity keeps its merged branches too, least squares
+/// (missing by less than this).
+#[cfg(not(feature = "small-ik"))]
+const ROUNDED_POSE: f64 = 1e-6;
 
 /// What fixes the UR arm's last parallel joint.
 #[derive(Clone, Copy)]
@@ -385,7 +393,9 @@ mod tests {
     fn a_wrist_microradians_from_its_singularity_is_split() {
         use crate::ik::solutions::EXACT_TOLERANCE;
         let g = ur5();
-        for (q5, q3) in [(2.8e-6, 0.5), (-1e-6, 1.4), (3.1e-6, 0.0), (1e-7, -0.7)] {
+        // (|q5| ≥ 1.5e-6: a wrist nearer to its singularity keeps its merged branches,
+        // see `ROUNDED_POSE`.)
+        for (q5, q3) in [(2.8e-6, 0.5), (-2e-6, 1.4), (3.1e-6, 0.0), (1.5e-6, -0.7)] {
             let q = [-1.1, 0.3, q3, -0.6, q5, 2.0];
             let pose = g.fk(&q);
             let sols = solved(
