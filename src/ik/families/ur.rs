@@ -230,6 +230,16 @@ fn miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
     (at.p - pose.p).amax().max((at.r - pose.r).amax())
 }
 
+/// The least [`miss`] of `candidates`.
+#[cfg(not(feature = "small-ik"))]
+fn closest(g: &Geometry<6>, pose: &Pose, candidates: &Candidates<6, 8>) -> f64 {
+    candidates
+        .as_slice()
+        .iter()
+        .map(|c| miss(g, pose, &c.q))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// A q5 merged into a double root (two roots closer than SP4's merge distance, `2√1e-11
 /// ≈ 6e-6` rad) whose branches — `out` from `start` — miss the pose by more than
 /// [`ROUNDED_POSE`]: the two roots were both real, the wrist a few µrad from its
@@ -250,12 +260,8 @@ fn split_wrist(
     for c in &out.as_slice()[start..] {
         one.push(c.q, c.fit);
     }
-    let closest = one
-        .as_slice()
-        .iter()
-        .map(|c| miss(g, pose, &c.q))
-        .fold(f64::INFINITY, f64::min);
-    (closest > ROUNDED_POSE).then(|| {
+    let merged_miss = closest(g, pose, &one);
+    (merged_miss > ROUNDED_POSE).then(|| {
         out.truncate(start);
         one
     })
@@ -275,11 +281,7 @@ fn keep_closer(
     start: usize,
     one: &Candidates<6, 8>,
 ) {
-    let merged_miss = one
-        .as_slice()
-        .iter()
-        .map(|c| miss(g, pose, &c.q))
-        .fold(f64::INFINITY, f64::min);
+    let merged_miss = closest(g, pose, one);
     let two = *out;
     out.truncate(start);
     for c in &two.as_slice()[start..] {
