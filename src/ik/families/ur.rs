@@ -12,6 +12,8 @@ use crate::ik::regular;
 use crate::ik::setup::ThreeParallel;
 use crate::ik::solutions::Candidates;
 #[cfg(not(feature = "small-ik"))]
+use crate::ik::solutions::{pose_matrix, residual};
+#[cfg(not(feature = "small-ik"))]
 use crate::ik::subproblems::Roots;
 use crate::ik::subproblems::{
     half_turn, sp1, sp1_angle, sp1_angles_2, sp1_from_sides, sp1_planar_sides, sp3, sp4, wrap, Fit,
@@ -89,7 +91,7 @@ pub fn three_parallel_two_intersecting_by_branch(
                 None
             },
             out.as_slice().len(),
-            None::<Candidates<6, 8>>,
+            None::<(Candidates<6, 8>, f64)>,
             t5,
         );
         // One pass, and a second on the split roots where the first was a merged one.
@@ -215,7 +217,7 @@ pub fn three_parallel_two_intersecting_by_branch(
                         continue;
                     }
                 }
-                (Some(_), Some(one)) => keep_closer(g, pose, out, start, &one),
+                (Some(_), Some((one, miss))) => keep_closer(g, pose, out, start, &one, miss),
                 _ => {}
             }
             break;
@@ -223,11 +225,10 @@ pub fn three_parallel_two_intersecting_by_branch(
     }
 }
 
-/// How far `fk(q)` is from `pose` (largest entry).
+/// How far `fk(q)` is from `pose` (the largest entry error, as `finish` measures it).
 #[cfg(not(feature = "small-ik"))]
 fn miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
-    let at = g.fk(q);
-    (at.p - pose.p).amax().max((at.r - pose.r).amax())
+    residual(&pose_matrix(&g.fk(q)), pose)
 }
 
 /// The least [`miss`] of `candidates`.
@@ -244,8 +245,9 @@ fn closest(g: &Geometry<6>, pose: &Pose, candidates: &Candidates<6, 8>) -> f64 {
 /// ≈ 6e-6` rad) whose branches — `out` from `start` — miss the pose by more than
 /// [`ROUNDED_POSE`]: the two roots were both real, the wrist a few µrad from its
 /// singularity and not at it, where q4 is not free (the merged branch, taking it so,
-/// misses by about |q5|). Then the merged branches are taken out of `out` and returned,
-/// for the caller to solve both roots in their place ([`keep_closer`]); `None` where
+/// misses by about |q5|). Then the merged branches are taken out of `out` and returned
+/// with their [`closest`] miss, for the caller to solve both roots in their place
+/// ([`keep_closer`]); `None` where
 /// they come closer (the wrist at its singularity, to rounding: q4 from `free` is the
 /// answer).
 #[cfg(not(feature = "small-ik"))]
@@ -255,7 +257,7 @@ fn split_wrist(
     pose: &Pose,
     out: &mut Candidates<6, 8>,
     start: usize,
-) -> Option<Candidates<6, 8>> {
+) -> Option<(Candidates<6, 8>, f64)> {
     let mut one = Candidates::default();
     for c in &out.as_slice()[start..] {
         one.push(c.q, c.fit);
@@ -263,15 +265,16 @@ fn split_wrist(
     let merged_miss = closest(g, pose, &one);
     (merged_miss > ROUNDED_POSE).then(|| {
         out.truncate(start);
-        one
+        (one, merged_miss)
     })
 }
 
 /// The split roots' branches (`out` from `start`) polished on `fk` — θ and q6 carry the
 /// rounding amplified by the inverse of the distance to the singularity — and flagged
 /// `Double` (`finish` checks them), each kept where it comes closer to the pose than the
-/// merged branches `one` (a root whose elbow cannot reach the wrist centre stays far
-/// off); the merged branches again where none does.
+/// merged branches `one`, whose closest misses by `merged_miss` (a root whose elbow
+/// cannot reach the wrist centre stays far off); the merged branches again where none
+/// does.
 #[cfg(not(feature = "small-ik"))]
 #[cold]
 fn keep_closer(
@@ -280,8 +283,8 @@ fn keep_closer(
     out: &mut Candidates<6, 8>,
     start: usize,
     one: &Candidates<6, 8>,
+    merged_miss: f64,
 ) {
-    let merged_miss = closest(g, pose, one);
     let two = *out;
     out.truncate(start);
     for c in &two.as_slice()[start..] {
