@@ -722,6 +722,29 @@ fn panda_q2_zero_band() {
     panda_q2_band(2, 4_000, |i, u| if i % 2 == 0 { 0.0 } else { 0.05 * u });
 }
 
+/// The Panda at `q2 = 0` where its shoulder read backwards (axes 6 and 5) is beside a
+/// tangency — two roots 1.8e-3 apart, q5 = π/2 ∓ 9e-4 — whose rounding (q5 2.3e-9 off)
+/// leaves the wrist's rotation 6e-10 off singular: split about it, q1 and q3 came where
+/// that error pointed on the continuum q1 + q3 = const, and `ik_near` answered 1.0 rad
+/// away (found with another seed of [`panda_q2_zero_band`]).
+#[test]
+fn panda_ik_near_at_q2_zero_beside_a_shoulder_tangency() {
+    let robot = Panda::default();
+    let q = [
+        -FRAC_PI_2,
+        0.0,
+        0.5638943492530246,
+        -0.4684442375042899,
+        1.5698758938212864,
+        2.2851428923786172,
+        -2.1855944642231866,
+    ];
+    check_panda(&robot, &q);
+    let near = robot.ik_near(&robot.fk(&q), &q).expect("ik_near");
+    let gap = joint_gap(&near, &q, &Panda::REVOLUTE);
+    assert!(gap <= 1e-8, "ik_near is {gap:e} away: {near:?}");
+}
+
 /// The Panda within a micro-radian of `q2 = 0` (2 000 configurations drawn in the limits
 /// without snapping, |q2| ≤ 1e-6): the reversed chain's wrist has two roots ±q2 closer
 /// than SP4's merge distance (or nearly so), which the wrist splits and polishes on the

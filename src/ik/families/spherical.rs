@@ -40,7 +40,15 @@ pub fn spherical(
         let r36 = (q1.rot(&h1) * q2.rot(&h2) * q3.rot(&h3)).transpose() * r06;
         let q123 = [q1.theta, q2.theta, q3.theta];
         let wrist_of = (wrist.target(&r36), || r36);
-        with_wrist(&wrist, q123, wrist_of, fit.and(Fit::Checked), free, out);
+        with_wrist(
+            (g, pose),
+            &wrist,
+            q123,
+            wrist_of,
+            fit.and(Fit::Checked),
+            free,
+            out,
+        );
     }
     for c in out.as_mut_slice() {
         c.q = polished(g, c.q, pose, c.fit);

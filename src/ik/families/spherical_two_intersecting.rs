@@ -56,7 +56,7 @@ pub fn spherical_two_intersecting_by_branch(
     let [h1, h2, ..] = g.h;
     let skew = h1.cross(&h2).norm_squared();
     if skew <= SHOULDER_PARALLEL {
-        parallel_shoulder(g, &wrist, (r06, w0, w), free, out);
+        parallel_shoulder(g, pose, &wrist, (r06, w0, w), free, out);
         return;
     }
     // Nearly parallel: the meeting point is far out (≳ 1e6 × the axes' offset), and the
@@ -73,7 +73,7 @@ pub fn spherical_two_intersecting_by_branch(
         let r36 = (q1.rot(&h1) * q2.rot(&h2) * r3).transpose() * r06;
         let q123 = [q1.theta, q2.theta, q3.theta];
         let wrist_of = (wrist.target(&r36), || r36);
-        with_wrist(&wrist, q123, wrist_of, fit.and(far), free, out);
+        with_wrist((g, pose), &wrist, q123, wrist_of, fit.and(far), free, out);
     });
     if skew <= SHOULDER_GRAZING {
         polish_all(g, pose, out);
@@ -116,6 +116,7 @@ const SHOULDER_GRAZING: f64 = 1e-2;
 /// 3. q1 — SP1: `rot(h1, q1) (p12 + R2 v) = p16`; the wrist as above.
 fn parallel_shoulder(
     g: &Geometry<6>,
+    pose: &Pose,
     wrist: &Wrist,
     (r06, w0, w): (M3, V3, V3),
     free: &[f64; 6],
@@ -146,7 +147,7 @@ fn parallel_shoulder(
             // Parallel to |h1 × h2| ≤ 1e-12 rad: the decomposition's error is below that
             // times the arm's lengths.
             let fit = t3.fit.and(t2.fit).and(f1);
-            with_wrist(wrist, q123, wrist_of, fit, free, out);
+            with_wrist((g, pose), wrist, q123, wrist_of, fit, free, out);
         }
     }
 }
@@ -172,6 +173,6 @@ pub fn spherical_two_intersecting_prismatic(
         let r36 = (q1.rot(&h1) * q2.rot(&h2)).transpose() * r06;
         let q123 = [q1.theta, q2.theta, q3];
         let wrist_of = (wrist.target(&r36), || r36);
-        with_wrist(&wrist, q123, wrist_of, fit, free, out);
+        with_wrist((g, pose), &wrist, q123, wrist_of, fit, free, out);
     });
 }

@@ -83,7 +83,7 @@ pub fn spherical_two_parallel_by_branch(
             );
             let r36 = || (r1 * q23.rot(&h2)).tr_mul(&r06);
             let q123 = [q1.theta, q2.theta, q3.theta];
-            with_wrist(&wrist, q123, (target, r36), fit, free, out);
+            with_wrist((g, pose), &wrist, q123, (target, r36), fit, free, out);
         }
     }
 }

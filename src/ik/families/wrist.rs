@@ -5,8 +5,9 @@
 //! q5 takes q4 and q6 from the first by half turns.
 
 use super::WristPair;
-use crate::ik::geometry::{orthogonal, rot, Geometry, Orbit, M3, V3};
-use crate::ik::solutions::Candidates;
+use crate::ik::geometry::{orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
+use crate::ik::polish::polish;
+use crate::ik::solutions::{pose_matrix, residual, Candidates};
 use crate::ik::subproblems::{sp1, sp1_angles_2, sp1_sides, wrap, Fit, Sp4};
 use core::f64::consts::PI;
 
@@ -20,11 +21,18 @@ pub(super) struct Wrist {
     /// `R5 h6` and `R5ᵀ h4`: h6's and h4's orbits about h5.
     h6_about_h5: Orbit,
     h4_about_h5: Orbit,
+    /// Whether the caller brings a merged branch that misses `R36` onto the pose on the
+    /// whole arm ([`with_wrist`]) where rounding hides the two roots of q5, rather than
+    /// [`Wrist::split`] splitting it about the merged root.
+    on_arm: bool,
 }
 
 impl Wrist {
     pub(super) fn new(g: &Geometry<6>, pair: WristPair) -> Wrist {
-        Wrist::of_axes([g.h[3], g.h[4], g.h[5]], pair)
+        Wrist {
+            on_arm: true,
+            ..Wrist::of_axes([g.h[3], g.h[4], g.h[5]], pair)
+        }
     }
 
     /// Any three axes meeting in one point (an S-R-S arm's shoulder too).
@@ -37,6 +45,7 @@ impl Wrist {
             pair,
             h6_about_h5: Orbit::new(&h[1], &h[2]),
             h4_about_h5: Orbit::new(&h[1], &h[0]),
+            on_arm: false,
         }
     }
 
@@ -116,29 +125,61 @@ impl Wrist {
     /// `2√1e-11 ≈ 6e-6` rad) whose branch `merged` (as [`Wrist::solve`] found it) misses
     /// `R36` (`m`) by more than rounding: the two roots were both real — the wrist a few
     /// µrad from its singularity, not at it — so both are solved (q4, q6 by SP1, then
-    /// [`Wrist::polish`]) and flagged `Double`, for `finish` to check against `fk`. `None` — the merged branch stays — where it makes `R36` to
-    /// rounding (the wrist is at its singularity, where the merged branch, with q4 free,
-    /// is the answer) or either split branch misses `R36` by as much.
+    /// [`Wrist::polish`]) and flagged `Double`, for `finish` to check against `fk`. `None`
+    /// — the merged branch stays — where it makes `R36` to rounding (the wrist is at its
+    /// singularity, where the merged branch, with q4 free, is the answer) or either split
+    /// branch misses `R36` by as much. Where rounding hid the two roots (|q5 − q5*| below
+    /// ~1e-8: the discriminant is lost), [`Wrist::split_about`] — but a wrist whose caller
+    /// holds the whole arm leaves that to [`with_wrist`].
     #[cold]
     fn split(
         &self,
         merged: [f64; 3],
+        targets: (V3, V3),
+        m: M3,
+        free: [f64; 2],
+        out: &mut [([f64; 3], Fit); 2],
+    ) -> Option<usize> {
+        let merged_miss = self.miss(merged, &m);
+        if merged_miss <= MERGED_WRIST {
+            return None;
+        }
+        match self.q5.split(self.h[0].dot(&targets.0)) {
+            Some(roots) => self.split_at(roots, merged_miss, targets, m, free, out),
+            None if self.on_arm => None,
+            None => self.split_about(merged, merged_miss, targets, m, free, out),
+        }
+    }
+
+    /// [`Wrist::split`] where rounding hid the two roots: q5 moved from the merged root
+    /// either way by the merged branch's miss `merged_miss`.
+    #[cold]
+    fn split_about(
+        &self,
+        merged: [f64; 3],
+        merged_miss: f64,
+        targets: (V3, V3),
+        m: M3,
+        free: [f64; 2],
+        out: &mut [([f64; 3], Fit); 2],
+    ) -> Option<usize> {
+        let roots = [merged_miss, -merged_miss].map(|d| Angle::new(merged[1] + d));
+        self.split_at(roots, merged_miss, targets, m, free, out)
+    }
+
+    /// The branches of the two roots of q5 (see [`Wrist::split`]), where both make `R36`
+    /// better than the merged branch's `merged_miss`.
+    #[cold]
+    fn split_at(
+        &self,
+        roots: [Angle; 2],
+        merged_miss: f64,
         (r36_h6, r36t_h4): (V3, V3),
         m: M3,
         free: [f64; 2],
         out: &mut [([f64; 3], Fit); 2],
     ) -> Option<usize> {
-        let [h4, h5, h6] = &self.h;
-        let miss = |[q4, q5, q6]: [f64; 3]| (rot(h4, q4) * rot(h5, q5) * rot(h6, q6) - m).amax();
-        let merged_miss = miss(merged);
-        if merged_miss <= MERGED_WRIST {
-            return None;
-        }
-        // The two roots; where rounding hid them (|q5 − q5*| below ~1e-8: the
-        // discriminant is lost), q5 moved from the merged root either way by its miss.
-        let roots = self.q5.split(h4.dot(&r36_h6)).unwrap_or_else(|| {
-            [merged_miss, -merged_miss].map(|d| crate::ik::geometry::Angle::new(merged[1] + d))
-        });
+        let [h4, _, h6] = &self.h;
         let mut split = [([0.0; 3], Fit::Double); 2];
         for (o, q5) in split.iter_mut().zip(&roots) {
             let (q4, f4) = sp1(&self.h6_about_h5.at(q5), &r36_h6, h4, free[0]);
@@ -147,11 +188,17 @@ impl Wrist {
             *o = (q, Fit::Double.and(f4).and(f6));
         }
         // The split pair only where both its branches make R36 better than the merged one.
-        if split.iter().any(|(q, _)| miss(*q) >= merged_miss) {
+        if split.iter().any(|(q, _)| self.miss(*q, &m) >= merged_miss) {
             return None;
         }
         *out = split;
         Some(2)
+    }
+
+    /// The largest entry of `R4 R5 R6 − m`.
+    fn miss(&self, [q4, q5, q6]: [f64; 3], m: &M3) -> f64 {
+        let [h4, h5, h6] = &self.h;
+        (rot(h4, q4) * rot(h5, q5) * rot(h6, q6) - m).amax()
     }
 
     /// `(q4, q5, q6)` moved by Gauss–Newton on `R4 R5 R6 = R36` (`m`): near the wrist's
@@ -193,6 +240,12 @@ impl Wrist {
 /// from it misses by about that.
 const MERGED_WRIST: f64 = 1e-10;
 
+/// Largest entry of the pose error at which [`at_singularity_on_arm`] takes the whole
+/// arm's polish as converged: to rounding, not stalled at the singularity's fold near
+/// `EXACT_TOLERANCE` (1e-10), as it is with the wrist nanoradians from its singularity
+/// rather than at it (the Panda at q2 = −8.2e-9: 6e-9 brought to 1.05e-10).
+const CONVERGED: f64 = 1e-12;
+
 /// Gauss–Newton rounds of [`Wrist::polish`]. Each squares the error; a start within
 /// rounding of the answer needs two, but a nanoradian from the singularity SP1 gives q4
 /// only to about 0.1 rad (the wrist's weak direction), and eight rounds bring that in.
@@ -204,9 +257,11 @@ const NEAR_DOUBLE: f64 = 1e-3;
 
 /// Adds the wrist solutions for the arm joints `q123` to `out`; `R36 = (R1 R2 R3)ᵀ R06` is
 /// the rotation the wrist must make (a prismatic joint turns nothing), given as
-/// `target = (R36 h6, R36ᵀ h4)` and, for a wrist singularity, `r36()`.
+/// `target = (R36 h6, R36ᵀ h4)` and, for a wrist singularity, `r36()`; `arm` is the
+/// geometry and the pose the joints solve (see [`at_singularity_on_arm`]).
 #[inline]
 pub(super) fn with_wrist(
+    arm: (&Geometry<6>, &Pose),
     wrist: &Wrist,
     q123: [f64; 3],
     (target, r36): ((V3, V3), impl Fn() -> M3),
@@ -215,9 +270,59 @@ pub(super) fn with_wrist(
     out: &mut Candidates<6, 8>,
 ) {
     let mut w = [([0.0; 3], Fit::Exact); 2];
-    let n = wrist.solve(target, r36, [free[3], free[5]], &mut w);
+    let n = wrist.solve(target, &r36, [free[3], free[5]], &mut w);
+    // One branch, not solved exactly: q5 merged into a double root (q6 then from the
+    // whole rotation, in least squares where the rotation is off by more than rounding).
+    if n == 1 && w[0].1 >= Fit::Double {
+        let m = r36();
+        let miss = wrist.miss(w[0].0, &m);
+        if miss > MERGED_WRIST {
+            let free = [free[3], free[5]];
+            at_singularity_on_arm(arm, wrist, (q123, w[0], miss), (target, m), fit, free, out);
+            return;
+        }
+    }
     for &(q456, f) in &w[..n] {
         let q = [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
         out.push(q, fit.and(f));
+    }
+}
+
+/// A wrist at its singularity to the accuracy of `R36` (its two roots of q5 hidden by
+/// rounding) whose merged branch `q456`, q4 the caller's, misses `R36` by `miss`: the
+/// joints before it carry an error the wrist cannot take out (beside a tangency of the
+/// shoulder, as on the Panda at q2 = 0 with its shoulder pair 1.8e-3 apart, 6e-10). Split
+/// about the merged root, SP1 would put q4 where that error points — anywhere on the
+/// continuum, 1 rad from the configuration there. So the merged branch is brought onto
+/// the pose on the whole arm (`polish`) from q4 the caller's: the point of the continuum
+/// nearest to it. Where that does not converge ([`CONVERGED`]: the wrist nanoradians from
+/// its singularity, not at it, where the way out of it is second order), the split about
+/// the merged root.
+#[cold]
+#[inline(never)]
+fn at_singularity_on_arm(
+    (g, pose): (&Geometry<6>, &Pose),
+    wrist: &Wrist,
+    (q123, (q456, f), miss): ([f64; 3], ([f64; 3], Fit), f64),
+    (target, m): ((V3, V3), M3),
+    fit: Fit,
+    free: [f64; 2],
+    out: &mut Candidates<6, 8>,
+) {
+    let joined = |q456: [f64; 3]| [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
+    let q = polish(g, joined(q456), pose);
+    if residual(&pose_matrix(&g.fk(&q)), pose) <= CONVERGED {
+        out.push(q, fit.and(f));
+        return;
+    }
+    let mut w = [([0.0; 3], Fit::Exact); 2];
+    let n = wrist
+        .split_about(q456, miss, target, m, free, &mut w)
+        .unwrap_or_else(|| {
+            w[0] = (q456, f);
+            1
+        });
+    for &(q456, f) in &w[..n] {
+        out.push(joined(q456), fit.and(f));
     }
 }
