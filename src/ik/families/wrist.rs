@@ -241,10 +241,12 @@ impl Wrist {
 const MERGED_WRIST: f64 = 1e-10;
 
 /// Largest entry of the pose error at which [`at_singularity_on_arm`] takes the whole
-/// arm's polish as converged: to rounding, not stalled at the singularity's fold near
-/// `EXACT_TOLERANCE` (1e-10), as it is with the wrist nanoradians from its singularity
-/// rather than at it (the Panda at q2 = −8.2e-9: 6e-9 brought to 1.05e-10).
-const CONVERGED: f64 = 1e-12;
+/// arm's polish as converged: to rounding. From a wrist at its singularity (the Panda at
+/// q2 = 0 beside its shoulder's tangency) it lands within 2.2e-16; from one nanoradians
+/// off it (the q2 = 1.5e-8 and −8.2e-9 of the micro-radian test) it stalls on the fold
+/// at 2.1e-13 and 1.05e-10 — a point of the continuum reaching the pose, but not the
+/// configuration, which the split finds.
+const CONVERGED: f64 = 1e-14;
 
 /// Gauss–Newton rounds of [`Wrist::polish`]. Each squares the error; a start within
 /// rounding of the answer needs two, but a nanoradian from the singularity SP1 gives q4
