@@ -10,6 +10,7 @@
 //! damping still converges.
 
 use super::geometry::{Geometry, Pose, V3};
+use super::solutions::{pose_matrix, residual};
 use super::subproblems::Fit;
 use crate::pose_error::pose_error;
 use nalgebra::{Matrix6, Vector6};
@@ -62,6 +63,12 @@ pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
         q = step_from(&q, &step, 1.0);
     }
     best
+}
+
+/// How far `fk(q)` is from `pose`: the largest entry error, as `finish` measures it (what
+/// a polished branch is judged by).
+pub(crate) fn pose_miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
+    residual(&pose_matrix(&g.fk(q)), pose)
 }
 
 /// Levenberg–Marquardt on `fk` from `q` towards `pose`, for up to `rounds` steps: where

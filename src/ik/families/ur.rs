@@ -7,12 +7,10 @@
 use super::{regular_first, Solvers, WristPair};
 use crate::ik::geometry::{flat, mv, rot, Angle, Geometry, Pose, M3, V3};
 #[cfg(not(feature = "small-ik"))]
-use crate::ik::polish::polish;
+use crate::ik::polish::{polish, pose_miss};
 use crate::ik::regular;
 use crate::ik::setup::ThreeParallel;
 use crate::ik::solutions::Candidates;
-#[cfg(not(feature = "small-ik"))]
-use crate::ik::solutions::{pose_matrix, residual};
 #[cfg(not(feature = "small-ik"))]
 use crate::ik::subproblems::Roots;
 use crate::ik::subproblems::{
@@ -225,19 +223,13 @@ pub fn three_parallel_two_intersecting_by_branch(
     }
 }
 
-/// How far `fk(q)` is from `pose` (the largest entry error, as `finish` measures it).
-#[cfg(not(feature = "small-ik"))]
-fn miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
-    residual(&pose_matrix(&g.fk(q)), pose)
-}
-
-/// The least [`miss`] of `candidates`.
+/// The least miss of `candidates` on the pose ([`pose_miss`]).
 #[cfg(not(feature = "small-ik"))]
 fn closest(g: &Geometry<6>, pose: &Pose, candidates: &Candidates<6, 8>) -> f64 {
     candidates
         .as_slice()
         .iter()
-        .map(|c| miss(g, pose, &c.q))
+        .map(|c| pose_miss(g, pose, &c.q))
         .fold(f64::INFINITY, f64::min)
 }
 
@@ -247,9 +239,8 @@ fn closest(g: &Geometry<6>, pose: &Pose, candidates: &Candidates<6, 8>) -> f64 {
 /// singularity and not at it, where q4 is not free (the merged branch, taking it so,
 /// misses by about |q5|). Then the merged branches are taken out of `out` and returned
 /// with their [`closest`] miss, for the caller to solve both roots in their place
-/// ([`keep_closer`]); `None` where
-/// they come closer (the wrist at its singularity, to rounding: q4 from `free` is the
-/// answer).
+/// ([`keep_closer`]); `None` where they come closer (the wrist at its singularity, to
+/// rounding: q4 from `free` is the answer).
 #[cfg(not(feature = "small-ik"))]
 #[cold]
 fn split_wrist(
@@ -289,7 +280,7 @@ fn keep_closer(
     out.truncate(start);
     for c in &two.as_slice()[start..] {
         let q = polish(g, c.q, pose).map(wrap);
-        if miss(g, pose, &q) < merged_miss {
+        if pose_miss(g, pose, &q) < merged_miss {
             out.push(q, c.fit.and(Fit::Double));
         }
     }

@@ -6,8 +6,8 @@
 
 use super::WristPair;
 use crate::ik::geometry::{orthogonal, rot, Angle, Geometry, Orbit, Pose, M3, V3};
-use crate::ik::polish::polish;
-use crate::ik::solutions::{pose_matrix, residual, Candidates};
+use crate::ik::polish::{polish, pose_miss};
+use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1, sp1_angles_2, sp1_sides, wrap, Fit, Sp4};
 use core::f64::consts::PI;
 
@@ -313,7 +313,7 @@ fn at_singularity_on_arm(
 ) {
     let joined = |q456: [f64; 3]| [q123[0], q123[1], q123[2], q456[0], q456[1], q456[2]];
     let q = polish(g, joined(q456), pose);
-    if residual(&pose_matrix(&g.fk(&q)), pose) <= CONVERGED {
+    if pose_miss(g, pose, &q) <= CONVERGED {
         out.push(q, fit.and(f));
         return;
     }
