@@ -600,6 +600,38 @@ kinegen::kinematics! {
 
 locked_self_test!(kuka_iiwa14_joint_7_free, KukaIiwa14, 14);
 locked_self_test!(kuka_iiwa14_joint_3_free, IiwaJoint3, 143);
+
+/// The iiwa with joint 7 locked at a nearly straight elbow (q4 = 3.1e-4, found with
+/// another seed of [`kuka_iiwa14_joint_7_free`]): read from the tool, SP2 meets the
+/// forearm's small circle about axis 5 (radius 1.3e-4 m) in two points 2.8e-6 m apart,
+/// q5 = π/2 ± 0.014. Judged against ‖p‖ they were merged into one double root, q5 = π/2:
+/// four branches 1.2e-8 off the pose, and `ik_near` said "out of reach". Each root now
+/// gives its own exact branches.
+#[test]
+fn iiwa_joint_7_locked_at_a_nearly_straight_elbow() {
+    let robot = KukaIiwa14::default();
+    let q = [
+        -1.4425935125208045,
+        FRAC_PI_2,
+        -0.3290533371383124,
+        0.00031447643371596,
+        1.5845697926107998,
+        -0.7927779229460208,
+        -1.391887455128858,
+    ];
+    let pose = robot.fk(&q);
+    let sols = robot.ik_with(&pose, q[6]);
+    assert_eq!(sols.exact().count(), 8, "{:?}", sols.as_slice());
+    for b in sols.exact() {
+        let e = pose_error(&robot.fk(&b.q), &pose);
+        assert!(e <= 1e-12, "{:?} is {e:e} off", b.q);
+    }
+    // Axes 3 and 5 are 3.1e-4 rad from one line: q3 − q5 is that ill-conditioned
+    // (measured 3.8e-7 rad away, the pose reached to 2e-13).
+    let near = robot.ik_near(&pose, &q).expect("the pose is reached");
+    let gap = joint_gap(&near, &q, &KukaIiwa14::REVOLUTE);
+    assert!(gap <= 1e-6, "ik_near is {gap:e} away: {near:?}");
+}
 locked_self_test!(
     kuka_iiwa14_joint_2_free_at_zero,
     IiwaJoint2,

@@ -13,7 +13,8 @@ use crate::ik::lanes::{Lanes, Vectors};
 /// **SP2** — `(θ1, θ2)` with `rot(k1, θ1) p1 = rot(k2, θ2) p2`: where the circles of `p1`
 /// about `k1` and of `p2` about `k2` meet. Up to two pairs; a double root when the circles
 /// touch (or their two meeting points are within rounding of the data upstream, as for
-/// SP3 and SP4: closer than `2√1e-11 ≈ 6e-6` of `‖p‖`); least squares when they miss (or
+/// SP3 and SP4: closer than `2√1e-11 ≈ 6e-6` of `‖p‖`, and than `6e-5` rad on the smaller
+/// circle — else two roots, checked against `fk`); least squares when they miss (or
 /// `‖p1‖ ≠ ‖p2‖`); `θ1` or `θ2` free (the caller's value) when its vector lies on its
 /// axis. When the axes are one (`k2 = ±k1`: a 7-joint arm's locked joint can line them
 /// up), only `θ1 ∓ θ2` is fixed: `θ1` is free and `θ2` follows (one pair, [`Fit::Free`]).
@@ -45,19 +46,30 @@ pub fn sp2(
     let g2 = (rr - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12) / nn;
     let base = k1 * alpha + k2 * beta;
     let terms = rr + alpha * alpha + beta * beta + 2.0 * (alpha * beta * c12).abs();
-    // |z± − base|² = g2 nn: a double root within rounding of the terms, or within
-    // MERGE_RELATIVE of ‖p‖² (errors upstream blur a double root more than its own terms).
-    let zs: ([V3; 2], usize) =
-        if g2.abs() * nn <= (ROOT_MERGE * EPS * terms).max(MERGE_RELATIVE * rr) {
-            fit = fit.and(Fit::Double);
-            ([base, base], 1)
-        } else if g2 < 0.0 {
-            fit = Fit::LeastSquares;
-            ([base, base], 1)
-        } else {
-            let g = n * sqrt0(g2);
-            ([base + g, base - g], 2)
-        };
+    // |z± − base|² = g2 nn, and z+ − z− (along n, in both circles' planes) spans
+    // 2√(g2 nn) / ρ radians of the circle of radius ρ. A double root: within rounding of
+    // the terms, or within MERGE_RELATIVE of ‖p‖² (errors upstream blur a double root
+    // more than its own terms) — unless that is two roots well apart on the smaller
+    // circle (SMALL_CIRCLE). A negative discriminant within the blur is a tangency; two
+    // roots within it are checked against `fk`.
+    let rho2 = (r1 - a1 * a1).min(r2 - a2 * a2).max(0.0);
+    let spread = g2.abs() * nn;
+    let blurred = spread <= MERGE_RELATIVE * rr;
+    let double = spread <= ROOT_MERGE * EPS * terms
+        || (blurred && (g2 < 0.0 || spread <= SMALL_CIRCLE * rho2));
+    let zs: ([V3; 2], usize) = if double {
+        fit = fit.and(Fit::Double);
+        ([base, base], 1)
+    } else if g2 < 0.0 {
+        fit = Fit::LeastSquares;
+        ([base, base], 1)
+    } else {
+        if blurred {
+            fit = fit.and(Fit::Checked);
+        }
+        let g = n * sqrt0(g2);
+        ([base + g, base - g], 2)
+    };
     let zero = Angle {
         theta: 0.0,
         sin: 0.0,
@@ -72,6 +84,15 @@ pub fn sp2(
     }
     (out, zs.1, fit)
 }
+
+/// Two meeting points within [`MERGE_RELATIVE`] of `‖p‖²` are one double root only if
+/// they are also closer than `2√SMALL_CIRCLE ≈ 6e-5` rad on the smaller circle (`g2 nn ≤
+/// SMALL_CIRCLE ρ²`). On a small circle (a vector near its axis: the iiwa's straight elbow
+/// read from the tool, ρ = 1.3e-4 m against ‖p‖ = 0.8 m) the ‖p‖ measure alone merged
+/// roots 0.028 rad apart (g2 nn / ρ² = 1.1e-4) into one branch 1.2e-8 off the pose; a
+/// double root blurred upstream (the Panda with joint 7 locked at q5 = −π/2) showed
+/// g2 nn / ρ² = 1.3e-11.
+const SMALL_CIRCLE: f64 = 1e-9;
 
 /// [`sp2`]'s meeting points for one `p1` and `L` vectors `p2` side by side, for a regular
 /// pose (the angles are SP1's from each point, left to the caller's batch of `atan2`).
@@ -182,6 +203,34 @@ mod tests {
         assert!(pairs[..n]
             .iter()
             .any(|(t1, t2)| (t1.theta - 0.4).abs() < 1e-12 && (t2.theta - 0.9).abs() < 1e-12));
+    }
+
+    /// Two roots 0.028 rad apart on a small circle (ρ = 1e-4 of ‖p‖ = 0.8: a vector near
+    /// its axis) are two roots, not one double root: their meeting points are 2.8e-6
+    /// apart, within the merge distance of ‖p‖ but not of ρ. Both solve the equation.
+    #[test]
+    fn sp2_keeps_two_roots_close_on_a_small_circle() {
+        let (k1, k2) = (V3::x(), V3::z());
+        use crate::math::{sin_cos, sqrt};
+        let (rho, h, phi) = (1e-4, 0.8, 0.014_f64);
+        let (sin_phi, cos_phi) = sin_cos(phi);
+        // Circle of p2 about z: z = h, radius ρ; of p1 about x: x = ρ cos φ, through
+        // (ρ cos φ, ±ρ sin φ, h).
+        let p2 = V3::new(rho, 0.0, h);
+        let a = rho * cos_phi;
+        let p1 = V3::new(a, 0.0, sqrt(rho * rho * sin_phi * sin_phi + h * h));
+        let (pairs, n, fit) = sp2(&p1, &p2, &k1, &k2, (0.0, 0.0));
+        assert_eq!(n, 2, "{pairs:?} {fit:?}");
+        assert!(fit <= Fit::Checked, "{fit:?}");
+        let mut t2 = [pairs[0].1.theta, pairs[1].1.theta];
+        t2.sort_by(f64::total_cmp);
+        assert!(
+            (t2[0] + phi).abs() < 1e-6 && (t2[1] - phi).abs() < 1e-6,
+            "{t2:?}"
+        );
+        for (t1, t2) in &pairs[..n] {
+            assert!((t1.rot(&k1) * p1 - t2.rot(&k2) * p2).norm() < 1e-12);
+        }
     }
 
     /// The lanes give [`sp2`]'s meeting points (its angles' SP1 from each), in its
