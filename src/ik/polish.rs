@@ -163,12 +163,42 @@ pub fn hadamard_ratio(g: &Geometry<6>, q: &[f64; 6]) -> f64 {
 }
 
 /// `q` as it is where its fit is [`Fit::Exact`] or [`Fit::Checked`] (every root it was
-/// built on well conditioned), else [`polish`]ed.
+/// built on well conditioned), else [`polish`]ed — and where Gauss–Newton stalls short
+/// of the pose but near it, given [`levenberg_marquardt`]'s damped steps too.
+///
+/// The stall is real: a quartic's near-double root that is no singularity of the arm
+/// (two (q1, q5) pairs 8e-7 rad apart, q5 0.23 rad apart) left a branch of a reachable
+/// pose 9e-11 off after [`polish`], 1.05e-10 as `finish` measures it — over
+/// `EXACT_TOLERANCE`, so flagged least squares; damped steps took it to 2e-16 (a random
+/// three-parallel table read backwards, `tests/ik_random_tables.rs`).
 #[inline]
 pub fn polished(g: &Geometry<6>, q: [f64; 6], pose: &Pose, fit: Fit) -> [f64; 6] {
     if fit <= Fit::Checked {
-        q
+        return q;
+    }
+    let q = polish(g, q, pose);
+    let size = 1.0 + pose.p.amax();
+    let miss = pose_miss(g, pose, &q);
+    // Converged already, or too far for a branch that reaches the pose
+    // (its least-squares nearest: damped steps would only spend their rounds).
+    if miss <= STALLED.0 * size || miss > STALLED.1 * size || miss.is_nan() {
+        return q;
+    }
+    let damped = levenberg_marquardt(g, q, pose, DAMPED_ROUNDS);
+    if pose_miss(g, pose, &damped) < miss {
+        damped
     } else {
-        polish(g, q, pose)
+        q
     }
 }
+
+/// The misses (per unit of the arm's size) between which [`polished`] tries damped steps
+/// after Gauss–Newton: above what [`polish`] calls within rounding's reach (1e-12), at
+/// most the near-miss
+/// a reaching branch can show (`NEAR_MISS`, 1e-5; a branch further off is the nearest
+/// of a pose out of its reach).
+const STALLED: (f64, f64) = (1e-12, crate::ik::solutions::NEAR_MISS);
+
+/// [`levenberg_marquardt`]'s rounds in [`polished`], as the general 6R gives them (linear
+/// convergence beside a close pair of solutions takes tens to hundreds).
+const DAMPED_ROUNDS: usize = 200;
