@@ -686,6 +686,109 @@ fn general_wrist_tables() {
     }
 }
 
+/// A three-parallel table read backwards (found with another seed of
+/// `three_parallel_reversed_tables`) at a pose beside a near-double root of SP6 that is
+/// no singularity of the arm: (q1, q5) pairs 8e-7 rad apart in q1, 0.23 rad in q5. The
+/// branch polished by Gauss–Newton stalled 1.05e-10 off (flagged least squares: the pose
+/// had no exact solution); Levenberg–Marquardt after it reaches 6e-16. (The generating
+/// configuration is 3.8e-4 rad from that branch: the arm is nearly singular there, its
+/// pose flat along that direction, so only the pose is checked.)
+#[test]
+fn three_parallel_reversed_beside_a_near_double_root() {
+    let src = r#"
+convention = "standard"
+base = { xyz = [0.098, -0.247, 0.091], rpy = [0.902, -0.358, -0.085] }
+tool = { xyz = [0.356, 0.086, 0.162], rpy = [0.882, 0.372, 0.975] }
+[[joints]]
+type = "revolute"
+a = -0.3027017123862425
+alpha = "pi/2"
+d = -0.21887320273693162
+offset = "pi/2"
+[[joints]]
+type = "revolute"
+a = 0.26415891756427023
+alpha = "-pi/2"
+d = -0.45669747181843623
+offset = "0"
+[[joints]]
+type = "revolute"
+a = 0.08582110170513492
+alpha = "pi"
+d = 0.19311168625287983
+offset = "-0.041"
+[[joints]]
+type = "revolute"
+a = -0.4655109367794835
+alpha = "pi"
+d = 0.41161094689645
+offset = "-pi/2"
+[[joints]]
+type = "revolute"
+a = -0.4963780834099342
+alpha = "-pi/2"
+d = -0.5463530460778266
+offset = "-pi/2"
+[[joints]]
+type = "revolute"
+a = 0.41600151018644477
+alpha = "0.548"
+d = 0.420287804135515
+offset = "-pi/2"
+"#;
+    let (robot, _) = load_str(src, "near_double.toml").unwrap();
+    let chain = robot.chain();
+    let (_, plan, geometry, _) = plan(&chain);
+    assert!(plan.reversed && plan.solver == "three_parallel");
+    let num = NumericRobot::new(&robot).unwrap();
+    let q = [
+        1.4348133727183603,
+        0.10841392150633045,
+        FRAC_PI_2,
+        1.0117842117487887,
+        -0.5306385017889119,
+        1.3269074337933526,
+    ];
+    let to_rows = |m: &nalgebra::Matrix4<f64>| -> [[f64; 4]; 4] {
+        core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]))
+    };
+    let pose = to_rows(&num.fk(&q).unwrap());
+    let error = |x: &[f64]| -> f64 {
+        let t = to_rows(&num.fk(x).unwrap());
+        (0..3)
+            .flat_map(|i| (0..4).map(move |j| (i, j)))
+            .map(|(i, j)| (t[i][j] - pose[i][j]).abs())
+            .fold(0.0, f64::max)
+    };
+    let checks = Checks {
+        residual: &|x| error(x),
+        singular: &|_| 0,
+        residuals: None,
+    };
+    let sols = solve(
+        &DynProblem {
+            plan: &plan,
+            geometry: &geometry,
+            pose,
+            q_locked: 0.0,
+            free: &q,
+            revolute: &[true; 6],
+            limits: &[[-PI, PI]; 6],
+            reaching_only: false,
+        },
+        &checks,
+    )
+    .unwrap();
+    assert!(
+        sols.iter().any(|b| b.flags.exact),
+        "no exact branch: {sols:?}"
+    );
+    for b in sols.iter().filter(|b| b.flags.exact) {
+        let e = error(&b.q);
+        assert!(e <= 1e-12, "exact {:?} is {e:e} off", b.q);
+    }
+}
+
 /// A quartic family in both conventions and both directions: the engine must choose it
 /// (no family of quadratics fits these tables either way), read the chain the way it was
 /// built, and decide the wrist orthogonal exactly where it is (`spherical`: quarter-turn
