@@ -109,8 +109,10 @@ pub struct Sp2Lanes<const L: usize, const M: usize> {
 
 impl<const L: usize, const M: usize> Sp2Lanes<L, M> {
     /// `None` where some lane is not regular: the axes are one line, the circles touch
-    /// (a double root, as [`sp2`] merges it), or `‖p1‖ ≠ ‖p2‖` (which [`sp2`] solves in
-    /// least squares: the caller's data upstream was not exact). `M` must be `2 L`.
+    /// (their meeting points within [`sp2`]'s merge distance of `‖p‖`, where it gives a
+    /// double root or two roots checked against `fk`), or `‖p1‖ ≠ ‖p2‖` (which [`sp2`]
+    /// solves in least squares: the caller's data upstream was not exact). `M` must be
+    /// `2 L`.
     #[cfg_attr(any(target_arch = "x86_64", target_arch = "aarch64"), inline(always))]
     pub fn solve(p1: &V3, p2: &Vectors<L>, k1: &V3, k2: &V3) -> Option<Self> {
         debug_assert!(M == 2 * L);

@@ -64,7 +64,7 @@ mod roots;
 mod spurious;
 
 use crate::ik::geometry::{orthogonal, rot, Geometry, Pose, M3, V3};
-use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish};
+use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish, DAMPED_ROUNDS};
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1_angle, wrap, Fit};
 use crate::math::abs;
@@ -334,10 +334,6 @@ type Found = Candidates<6, FOUND>;
 /// A branch within this of the pose (relative to its position's size; position plus
 /// rotation norm) reaches it; `finish` then measures it against `EXACT_TOLERANCE`.
 const REACHES: f64 = 1e-9;
-
-/// Levenberg–Marquardt steps for a tracked branch Gauss–Newton left off the pose: on the
-/// self-tests (`tests/ik_closed_form.rs`) miss no more poses with 200 than with 2 000.
-const DAMPED_ROUNDS: usize = 200;
 
 /// How far a pose the elimination is degenerate for is moved ([`nudged`]), both ways:
 /// far enough that the moved pose's pencil is regular (pivot ratio ~1e-6), near enough
