@@ -4,10 +4,10 @@
 #      qemu-system-arm (Debian's apt-get, non-interactive);
 #   2. builds the firmware (UR5 FK, Jacobian, det in f64 and f32, IK; the Jaco's general
 #      6R IK and the stack it takes) and the host check;
-#      four times: the default closed-form IK, the same with feature defmt (the UR5's
-#      solutions also logged through kinegen's `defmt::Format`, decoded on the host),
-#      then the size-first one (feature small-ik) at opt-level "s" and at "z"; the size-first UR5 `ik`'s flash at "s"
-#      checked under 32 KiB (size.py);
+#      twice: the default closed-form IK with feature defmt (the UR5's solutions also
+#      logged through kinegen's `defmt::Format`, decoded on the host), then the size-first
+#      one (feature small-ik); the size-first UR5 `ik`'s flash at opt-level "s" checked
+#      under 32 KiB (size.py); with FIRMWARE_OPT_Z=1 also the size-first one at "z";
 #   3. runs the firmware on QEMU's mps2-an386 (Cortex-M4F) with a time limit, its
 #      semihosting output piped into the host check, which compares every value with the
 #      host's (see src/bin/check.rs). Exit status 0 only if all of it succeeded.
@@ -65,12 +65,12 @@ run() {
 }
 
 # The default IK (the regular poses in lanes), then the size-first one (`small-ik`), at
-# the profile's opt-level "s" and at "z" (the size-first path of README.md, "Flash
-# size"); each bit-identical to the host built the same way, all with the same solutions.
-run lanes
-# kinegen's `defmt::Format` on the target: the same firmware logging its UR5 solutions
-# through defmt, decoded on the host with the ELF and compared (src/defmt_log.rs).
-run defmt --features defmt
+# the profile's opt-level "s"; each bit-identical to the host built the same way, both with
+# the same solutions. The default one is built with feature `defmt`: the same firmware and
+# checks, plus its UR5 solutions logged through kinegen's `defmt::Format`, decoded on the
+# host with the ELF and compared (src/defmt_log.rs). Without defmt it is the same code
+# (the logging is behind the feature); a separate run cost CI two more release builds.
+run lanes --features defmt
 run small --features small-ik
 "$target_dir/$host/release/check" --same-ik "$outputs/lanes" "$outputs/small"
 # The size-first `ik` at the profile's opt-level "s" stays under 32 KiB (README.md,
@@ -79,5 +79,8 @@ if ! rustup component list --installed | grep -q '^llvm-tools'; then
     rustup component add llvm-tools
 fi
 python3 size.py --features small-ik --max-ik-f64 32768 | tail -n 1
-CARGO_PROFILE_RELEASE_OPT_LEVEL=z run small-z --features small-ik
-"$target_dir/$host/release/check" --same-ik "$outputs/small" "$outputs/small-z"
+# Opt-level "z" (README.md, "Flash size"), by hand: two more release builds.
+if [ "${FIRMWARE_OPT_Z:-0}" = 1 ]; then
+    CARGO_PROFILE_RELEASE_OPT_LEVEL=z run small-z --features small-ik
+    "$target_dir/$host/release/check" --same-ik "$outputs/small" "$outputs/small-z"
+fi
