@@ -40,7 +40,8 @@ stamp "virtual environment ready"
 
 # The dev profile (the workspace's: engine, runtime and CLI optimised, the bindings not):
 # the same code and the same values as a release wheel (no fast-math either way), built in
-# 176 s instead of 295 s on 2 cores; the benchmarks (bench/) build release wheels.
+# 176 s in CI on 2 cores, where the release wheel took 233 s and 295 s in the two runs
+# before; the benchmarks (bench/) build release wheels.
 "$venv/bin/maturin" build --quiet -m kinegen-py/Cargo.toml -o "$wheels"
 stamp "wheel built"
 
