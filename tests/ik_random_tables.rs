@@ -402,6 +402,45 @@ fn gap(a: &[f64], b: &[f64], revolute: &[bool]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// `m` as the rows the solver takes a pose in.
+fn rows(m: &nalgebra::Matrix4<f64>) -> [[f64; 4]; 4] {
+    core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]))
+}
+
+/// How far the pose at `x` is from `pose`: the largest entry of the difference of their
+/// 3 × 4 tops, or with `task` rows only those entries (row 5, the yaw, as an angle).
+fn pose_error(num: &NumericRobot, pose: &[[f64; 4]; 4], task: Option<&[usize]>, x: &[f64]) -> f64 {
+    let t = rows(&num.fk(x).unwrap());
+    let angle = |m: &[[f64; 4]; 4]| m[1][0].atan2(m[0][0]);
+    match task {
+        None => (0..3)
+            .flat_map(|i| (0..4).map(move |j| (i, j)))
+            .map(|(i, j)| (t[i][j] - pose[i][j]).abs())
+            .fold(0.0, f64::max),
+        Some(rows) => rows
+            .iter()
+            .map(|&r| match r {
+                0..=2 => (t[r][3] - pose[r][3]).abs(),
+                _ => gap(&[angle(&t)], &[angle(pose)], &[true]),
+            })
+            .fold(0.0, f64::max),
+    }
+}
+
+/// The closed-form solve of `pose` as the CLI calls it (`free`: the values of angles left
+/// free), each candidate measured by `error`.
+fn solve_pose(
+    problem: &DynProblem,
+    error: &dyn Fn(&[f64]) -> f64,
+) -> Vec<kinegen::ik::dispatch::DynBranch> {
+    let checks = Checks {
+        residual: error,
+        singular: &|_| 0,
+        residuals: None,
+    };
+    solve(problem, &checks).unwrap()
+}
+
 /// The self-test on one table; `task` rows compare only those entries; `snap_wrist`:
 /// joints 4–6 are snapped too. Returns the engine's wrist decision.
 fn self_test(
@@ -436,9 +475,6 @@ fn self_test_counting(
     let limits: Vec<[f64; 2]> = (0..n)
         .map(|i| if revolute[i] { [-PI, PI] } else { [0.3, 0.9] })
         .collect();
-    let to_rows = |m: &nalgebra::Matrix4<f64>| -> [[f64; 4]; 4] {
-        core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]))
-    };
     for _ in 0..CONFIGURATIONS {
         let q: Vec<f64> = (0..n)
             .map(|i| {
@@ -451,24 +487,8 @@ fn self_test_counting(
                 }
             })
             .collect();
-        let pose = to_rows(&num.fk(&q).unwrap());
-        let error = |x: &[f64]| -> f64 {
-            let t = to_rows(&num.fk(x).unwrap());
-            let angle = |m: &[[f64; 4]; 4]| m[1][0].atan2(m[0][0]);
-            match task {
-                None => (0..3)
-                    .flat_map(|i| (0..4).map(move |j| (i, j)))
-                    .map(|(i, j)| (t[i][j] - pose[i][j]).abs())
-                    .fold(0.0, f64::max),
-                Some(rows) => rows
-                    .iter()
-                    .map(|&r| match r {
-                        0..=2 => (t[r][3] - pose[r][3]).abs(),
-                        _ => gap(&[angle(&t)], &[angle(&pose)], &[true]),
-                    })
-                    .fold(0.0, f64::max),
-            }
-        };
+        let pose = rows(&num.fk(&q).unwrap());
+        let error = |x: &[f64]| pose_error(&num, &pose, task, x);
         let jac = num.jacobian(&q).unwrap();
         let rows: Vec<usize> = task.map_or((0..6).collect(), <[usize]>::to_vec);
         let square = nalgebra::DMatrix::from_fn(rows.len(), n, |r, c| jac[(rows[r], c)]);
@@ -480,11 +500,6 @@ fn self_test_counting(
             square.svd(false, false).singular_values.iter().product()
         };
         let singular = det.abs() <= 1e-12 * scale.powi(n as i32);
-        let checks = Checks {
-            residual: &|x| error(x),
-            singular: &|_| 0,
-            residuals: None,
-        };
         let problem = DynProblem {
             plan: &plan,
             geometry: &geometry,
@@ -495,21 +510,20 @@ fn self_test_counting(
             limits: &limits,
             reaching_only: false,
         };
-        let sols = solve(&problem, &checks).unwrap();
+        let sols = solve_pose(&problem, &error);
         if plan.wrist == WristPair::HalfTurn {
             // The half-turn shortcut and the subproblems agree, solution for solution.
             let general = DynPlan {
                 wrist: WristPair::Solve,
                 ..plan.clone()
             };
-            let other = solve(
+            let other = solve_pose(
                 &DynProblem {
                     plan: &general,
                     ..problem
                 },
-                &checks,
-            )
-            .unwrap();
+                &error,
+            );
             assert_eq!(
                 sols.len(),
                 other.len(),
@@ -749,23 +763,9 @@ offset = "-pi/2"
         -0.5306385017889119,
         1.3269074337933526,
     ];
-    let to_rows = |m: &nalgebra::Matrix4<f64>| -> [[f64; 4]; 4] {
-        core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]))
-    };
-    let pose = to_rows(&num.fk(&q).unwrap());
-    let error = |x: &[f64]| -> f64 {
-        let t = to_rows(&num.fk(x).unwrap());
-        (0..3)
-            .flat_map(|i| (0..4).map(move |j| (i, j)))
-            .map(|(i, j)| (t[i][j] - pose[i][j]).abs())
-            .fold(0.0, f64::max)
-    };
-    let checks = Checks {
-        residual: &|x| error(x),
-        singular: &|_| 0,
-        residuals: None,
-    };
-    let sols = solve(
+    let pose = rows(&num.fk(&q).unwrap());
+    let error = |x: &[f64]| pose_error(&num, &pose, None, x);
+    let sols = solve_pose(
         &DynProblem {
             plan: &plan,
             geometry: &geometry,
@@ -776,9 +776,8 @@ offset = "-pi/2"
             limits: &[[-PI, PI]; 6],
             reaching_only: false,
         },
-        &checks,
-    )
-    .unwrap();
+        &error,
+    );
     assert!(
         sols.iter().any(|b| b.flags.exact),
         "no exact branch: {sols:?}"
