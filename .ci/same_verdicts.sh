@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs the README's `cargo test --workspace --exclude kinegen-py` twice (the second run reuses the build) and fails unless
-# both pass with the same verdict for every test. The verdicts are `binary: test: ok`
-# lines taken from libtest's output, sorted.
+# Runs the README's `cargo test --workspace --exclude kinegen-py` twice (the second run
+# reuses the build) and fails unless both pass with the same verdict for every test. The
+# verdicts are `binary: test: ok` lines taken from libtest's output, sorted.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="$(mktemp -d)"
