@@ -21,12 +21,8 @@ if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then
     rustup target add thumbv7em-none-eabihf
 fi
 if ! command -v qemu-system-arm >/dev/null 2>&1; then
-    sudo=""
-    if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
     echo "installing qemu-system-arm (Debian)" >&2
-    $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-        qemu-system-arm </dev/null
+    bash ../../.ci/apt_install.sh qemu-system-arm
 fi
 qemu-system-arm --version | head -n 1
 

@@ -19,12 +19,8 @@ venv="$target/py-venv"
 out="$target/report-browser"
 
 if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
-    sudo=""
-    if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
     echo "installing chromium and chromium-driver (Debian)" >&2
-    $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-        chromium chromium-driver </dev/null
+    bash .ci/apt_install.sh chromium chromium-driver
 fi
 chromium --version 2>/dev/null | head -n 1
 if [ ! -x "$venv/bin/python" ]; then
