@@ -427,8 +427,8 @@ fn pose_error(num: &NumericRobot, pose: &[[f64; 4]; 4], task: Option<&[usize]>, 
     }
 }
 
-/// The closed-form solve of `pose` as the CLI calls it (`free`: the values of angles left
-/// free), each candidate measured by `error`.
+/// The closed-form solve of `problem` as the CLI calls it, each candidate measured by
+/// `error` (no singular factors: the tests judge singularity themselves).
 fn solve_pose(
     problem: &DynProblem,
     error: &dyn Fn(&[f64]) -> f64,
