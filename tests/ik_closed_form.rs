@@ -418,6 +418,69 @@ general_self_test!(
         singular: [0, 0, 0]
     }
 );
+/// Singular poses of the Jaco (its wrist at q4 = q5 = 0, from the self-test at other
+/// seeds) that the general 6R lost under some hint states: a fold's double root whose
+/// eigen-joint value a nearby solution shares (its null vectors read as the neighbours'
+/// solutions, or as nothing), and a quadruple one (q2 = … = q5 = 0) Gauss–Newton left
+/// 1e-10 off. Under every formulation the hint can start at, a branch within
+/// [`FOLD_GAP`] of the generating configuration reaches the pose and is flagged singular.
+#[test]
+fn kinova_jaco_folds_under_every_hint() {
+    use kinegen::ik::families::{general_6r, Hint, FORMULATIONS};
+    use kinegen::ik::geometry::Pose;
+    use kinegen::ik::solutions::{Candidates, EXACT_TOLERANCE};
+    use kinegen::ik::subproblems::Fit;
+    let robot = KinovaJaco::default();
+    let g = robot.ik_geometry();
+    // One configuration a row (seeds 2021, 2022 twice, 2015, 2017, 2025, 2028 twice).
+    #[rustfmt::skip]
+    let folds: [[f64; 6]; 8] = [
+        [-FRAC_PI_2, 0.0, 0.04783611516365527, 0.0, 0.0, 3.11378820592605],
+        [-FRAC_PI_2, 2.790408338850054, 0.8723688475565048, 0.0, 0.0, 0.1233095405028184],
+        [-2.134806904670632, -0.2142804684638775, 0.42684411574327097, 0.0, 0.0, -0.6263288400815381],
+        [0.7737818983165146, -2.264685489721289, 0.0, 0.0, 2.9229976993080653, -FRAC_PI_2],
+        [-0.04712515302862874, -1.5429323957285297, 0.0, 0.0, -2.8906197113174232, -0.8354355860591895],
+        [-0.3070805263570464, -2.3275761579708227, 0.0, 0.0, -3.0106829519663165, 0.3504011870351569],
+        [2.6156732733825123, 0.0, 0.0, 0.0, 0.0, 1.8684549122670289],
+        [-3.1398404167131435, 0.0, 0.0, 0.0, 0.0, 0.0],
+    ];
+    for q in folds {
+        let pose = robot.fk(&q);
+        assert!(robot
+            .singular_factors(&q)
+            .iter()
+            .any(|f| f.abs() <= SINGULAR));
+        for k in 0..FORMULATIONS.len() {
+            let mut c = Candidates::<6, 16>::default();
+            general_6r(
+                &g,
+                &Pose::from_matrix(&pose),
+                &[0.0; 6],
+                &Hint::at(k),
+                &mut c,
+            );
+            let gap = c
+                .as_slice()
+                .iter()
+                .filter(|b| matches!(b.fit, Fit::Double | Fit::Free))
+                .filter(|b| pose_error(&robot.fk(&b.q), &pose) <= EXACT_TOLERANCE)
+                .map(|b| joint_gap(&b.q, &q, &KinovaJaco::REVOLUTE))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                gap <= FOLD_GAP,
+                "{q:?}, hint {k}: nearest singular branch {gap:e} away"
+            );
+        }
+    }
+}
+
+/// How far a singular branch may be from the configuration it stands for: along the
+/// direction the pose does not see, its miss grows with the square of the distance at a
+/// double root and the fourth power at the quadruple one (q2 = … = q5 = 0), so a branch
+/// that meets the pose to `EXACT_TOLERANCE` (1e-10) may be its fourth root away (unit
+/// curvature).
+const FOLD_GAP: f64 = 3.2e-3;
+
 general_self_test!(
     fanuc_crx10ial,
     FanucCrx10iaL,

@@ -64,7 +64,7 @@ mod roots;
 mod spurious;
 
 use crate::ik::geometry::{orthogonal, rot, Geometry, Pose, M3, V3};
-use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish, DAMPED_ROUNDS};
+use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish, pose_miss, DAMPED_ROUNDS};
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1_angle, wrap, Fit};
 use crate::math::abs;
@@ -72,7 +72,7 @@ use core::cell::OnceCell;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use elimination::System;
 pub use formulation::{Formulation, FORMULATIONS};
-use roots::{REAL, SPLIT};
+use roots::{eigen_angle, REAL, SPLIT};
 
 /// A branch whose Jacobian's Hadamard ratio is below this is flagged singular
 /// ([`Fit::Double`]): `finish` then names the vanishing factors.
@@ -152,14 +152,16 @@ pub fn general_6r<const K: usize>(
                 }
                 let q = polish(g, q, pose);
                 // Gauss–Newton stalls near two solutions close together (the Gen3's pairs
-                // 0.03–0.06 rad apart, |det J| ~1e-6: 5e-8 off after its rounds), where
-                // damped steps still converge; kept only where they reach the pose, so a
-                // branch that cannot does not move.
-                let q = if reaches(g, &q, pose) {
+                // 0.03–0.06 rad apart, |det J| ~1e-6: 5e-8 off after its rounds), and
+                // converges only linearly onto a singular one (the Jaco at q2 = … = q5 = 0:
+                // 1e-10 off), where damped steps still converge; kept only where they reach
+                // the pose closer, so a branch that cannot does not move.
+                let q = if reaches(g, &q, pose) && pose_miss(g, pose, &q) <= SETTLED {
                     q
                 } else {
                     let damped = levenberg_marquardt(g, q, pose, DAMPED_ROUNDS);
-                    if reaches(g, &damped, pose) {
+                    let closer = pose_miss(g, pose, &damped) < pose_miss(g, pose, &q);
+                    if reaches(g, &damped, pose) && closer {
                         damped
                     } else {
                         q
@@ -335,6 +337,11 @@ type Found = Candidates<6, FOUND>;
 /// rotation norm) reaches it; `finish` then measures it against `EXACT_TOLERANCE`.
 const REACHES: f64 = 1e-9;
 
+/// A branch tracked back onto the pose that misses it by more than this (the largest
+/// entry, as `finish` measures against `EXACT_TOLERANCE`, 1e-10) is taken on by damped
+/// steps.
+const SETTLED: f64 = 1e-11;
+
 /// How far a pose the elimination is degenerate for is moved ([`nudged`]), both ways:
 /// far enough that the moved pose's pencil is regular (pivot ratio ~1e-6), near enough
 /// that tracking back is a few Newton runs.
@@ -477,8 +484,9 @@ impl Hint {
 /// Steps 4–6 on one regular formulation; whether solutions may be missing because a
 /// value of the eigen joint is shared by more of them than the back-substitution
 /// separates: a real root whose null space it could not read or has more than two
-/// dimensions, a solution read off a root split from the real line with a single null
-/// vector, or roots near the real line none of which gave a branch.
+/// dimensions, a real root none of whose branches reaching the pose keeps its value of
+/// the eigen joint, a solution read off a root split from the real line with a single
+/// null vector, or roots near the real line none of which gave a branch.
 fn solve_with(
     g: &Geometry<6>,
     pose: &Pose,
@@ -495,6 +503,9 @@ fn solve_with(
     let xf = orthogonal(&g.h[f]);
     for &(x, im) in &roots[..n] {
         let (branches, count, wider) = sys.back_substitute(x);
+        // Whether a branch keeps this root's value of the eigen joint (see the end).
+        let (eigen, value) = (sys.joints[0], eigen_angle(x));
+        let mut kept = false;
         shared |= (wider || count == 0) && im <= REAL;
         for mut q in branches.into_iter().take(count) {
             // The eliminated joint by SP1: rot(h_f, q_f) = (R before f)ᵀ R06 (R after f)ᵀ.
@@ -510,6 +521,7 @@ fn solve_with(
             // Whether the branch reaches the pose: measured once, where asked.
             let reach = OnceCell::new();
             let reached = || *reach.get_or_init(|| close || reaches(g, &q, pose));
+            kept |= abs(wrap(q[eigen] - value)) <= KEPT && reached();
             // A solution read as a root split off the real line with one null vector:
             // two met there, or more share the value (then some are missing).
             shared |= im > SPLIT && count == 1 && reached();
@@ -536,11 +548,22 @@ fn solve_with(
                 found.push(q, fit.and(ff));
             }
         }
+        // A real root none of whose branches keeps its value of the eigen joint: Newton
+        // took each to a solution at another value — the null vectors were read wrong
+        // (a fold's double root beside two solutions whose eigen joint is near: the Jaco
+        // at q4 = q5 = 0), and the solution at this value is missing.
+        shared |= !kept && im <= REAL;
     }
     // Roots near the real line but no branch from any: a value shared by four solutions
     // splits by ~ε^(1/4), and none of its null vectors is read right.
     shared || (n > 0 && found.as_slice().len() == before)
 }
+
+/// A branch within this of its root's value of the eigen joint (radians) is that root's:
+/// Newton moves a back-substituted branch by its rounding (a quadruple root's split,
+/// ε^(1/4), at most), a wrongly read one to another solution (~1e-2 away in the Jaco's
+/// cases).
+const KEPT: f64 = 1e-3;
 
 /// A back-substituted branch this close to the pose (relative to its position's size) is
 /// not polished: `finish` checks it against `EXACT_TOLERANCE` (1e-10) anyway.
