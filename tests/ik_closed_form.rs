@@ -707,34 +707,26 @@ locked_self_test!(
     14220,
     Some(0.0)
 );
-// Known gaps (issue 27), kept as reproducers. Where the locked joint leaves the
-// shoulder's axes within ~0.1 rad of parallel, the branches are now polished on `fk`
-// (no exact branch misses the pose any more: 6 such failures of 30 000 before, none
-// now); what remains, 5 of the 30 000 configurations, is at a straight elbow (q4 = 0)
-// with that near-parallel shoulder: two elbow roots ~1e-5 apart are merged into one,
-// hiding a configuration 0.03 rad away in q1 (URDF), or the merged branch's free joint
-// is moved by the polish (DH, joint 2 free: `ik_near` 1.2e-3 rad off).
+// Where the locked joint leaves the shoulder's axes within ~0.1 rad of parallel, the
+// branches are polished on `fk` (no exact branch misses the pose: 6 such failures of
+// 30 000 before). The URDF iiwa with joint 1 free, a known gap until then (q4 = 0 merged
+// with its neighbour, 1 of 10 000), passes; two are still known gaps (issue 27), kept as
+// reproducers, at a straight elbow (q4 ≈ 0) with that near-parallel shoulder.
 locked_self_test!(
     kuka_iiwa14_joint_2_free,
     IiwaJoint2,
     142,
     None,
-    ignore =
-        "known gap: straight elbow, q2 = 0.0025 locked: ik_near 1.2e-3 off (1 of 10 000; issue 27)"
+    ignore = "known gap: straight elbow, q2 = 0.109 locked, q4 = 0: no exact solution (issue 27)"
 );
-locked_self_test!(
-    kuka_iiwa14_urdf,
-    IiwaUrdf,
-    1414,
-    None,
-    ignore = "known gap: URDF iiwa, joint 1 free, q4 = 0 merged with its neighbour (1 of 10 000; issue 27)"
-);
+locked_self_test!(kuka_iiwa14_urdf, IiwaUrdf, 1414, None);
 locked_self_test!(
     kuka_iiwa14_urdf_joint_2_free,
     IiwaUrdfJoint2,
     1422,
     None,
-    ignore = "known gap: URDF iiwa, joint 2 free, q4 ≈ 0 roots merged (3 of 10 000; issue 27)"
+    ignore = "known gap: URDF iiwa, joint 2 free, q3 = q5 = 0 beside q4 ≈ 0: exact branches \
+              6.5e-5 rad from it, none flagged singular (issue 27)"
 );
 /// What holds everywhere for the arms above, gaps included: every branch flagged exact
 /// reaches the pose (1e-10), on the same seeded configurations as their self-tests (the
