@@ -11,7 +11,7 @@
 
 use super::geometry::{Geometry, Pose, V3};
 use super::solutions::{pose_matrix, residual};
-use super::subproblems::Fit;
+use super::subproblems::{wrap, Fit};
 use crate::pose_error::pose_error;
 use nalgebra::{Matrix6, Vector6};
 
@@ -21,6 +21,11 @@ const ROUNDS: usize = 24;
 
 /// `q` moved onto `pose` (see the module); `q` itself where no round improves it.
 pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
+    polish_holding(g, q, pose, &[false; 6])
+}
+
+/// [`polish`] with the `held` joints kept where they are (their Jacobian columns left out).
+fn polish_holding(g: &Geometry<6>, q: [f64; 6], pose: &Pose, held: &[bool; 6]) -> [f64; 6] {
     let (mut best, mut best_miss) = (q, f64::INFINITY);
     // The step taken from `best`, and how much of it: near a singular solution a full
     // Gauss–Newton step can overshoot (the model is quadratic across the fold), and a
@@ -29,7 +34,7 @@ pub fn polish(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
     let mut q = q;
     let size = 1.0 + pose.p.amax();
     for _ in 0..ROUNDS {
-        let (e, j) = error_and_jacobian(g, &q, pose);
+        let (e, j) = error_and_jacobian(g, &q, pose, held);
         let miss = e.amax();
         if miss.is_nan() || miss > 2.0 * best_miss {
             // Worse: within rounding's reach of the pose, done, and far from it (a
@@ -80,8 +85,19 @@ pub(crate) fn pose_miss(g: &Geometry<6>, pose: &Pose, q: &[f64; 6]) -> f64 {
 /// grows where it does not; convergence near such a solution is linear, so it can take
 /// hundreds of steps. The best iterate is returned.
 pub fn levenberg_marquardt(g: &Geometry<6>, q: [f64; 6], pose: &Pose, rounds: usize) -> [f64; 6] {
+    levenberg_marquardt_holding(g, q, pose, rounds, &[false; 6])
+}
+
+/// [`levenberg_marquardt`] with the `held` joints kept where they are.
+fn levenberg_marquardt_holding(
+    g: &Geometry<6>,
+    q: [f64; 6],
+    pose: &Pose,
+    rounds: usize,
+    held: &[bool; 6],
+) -> [f64; 6] {
     let size = 1.0 + pose.p.amax();
-    let (mut e, mut j) = error_and_jacobian(g, &q, pose);
+    let (mut e, mut j) = error_and_jacobian(g, &q, pose, held);
     let (mut q, mut cost) = (q, e.norm_squared());
     let jtj = j.transpose() * j;
     let mut mu = 1e-6 * (0..6).map(|i| jtj[(i, i)]).fold(0.0, f64::max);
@@ -97,7 +113,7 @@ pub fn levenberg_marquardt(g: &Geometry<6>, q: [f64; 6], pose: &Pose, rounds: us
             break;
         };
         let next = step_from(&q, &step, 1.0);
-        let (e2, j2) = error_and_jacobian(g, &next, pose);
+        let (e2, j2) = error_and_jacobian(g, &next, pose, held);
         let cost2 = e2.norm_squared();
         // The reduction the linear model predicts, hᵀ(μh + g) for the cost ‖e‖².
         let predicted = step.dot(&(step * mu + grad));
@@ -125,9 +141,17 @@ fn step_from(q: &[f64; 6], step: &Vector6<f64>, scale: f64) -> [f64; 6] {
 }
 
 /// The pose error `[p − p(q); log(R R(q)ᵀ)]` and the world-frame geometric Jacobian at
-/// `q`.
-fn error_and_jacobian(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> (Vector6<f64>, Matrix6<f64>) {
-    let (at, j) = jacobian(g, q);
+/// `q`, the columns of the `held` joints zero (no step moves them).
+fn error_and_jacobian(
+    g: &Geometry<6>,
+    q: &[f64; 6],
+    pose: &Pose,
+    held: &[bool; 6],
+) -> (Vector6<f64>, Matrix6<f64>) {
+    let (at, mut j) = jacobian(g, q);
+    for (k, _) in held.iter().enumerate().filter(|(_, &h)| h) {
+        j.column_mut(k).fill(0.0);
+    }
     (pose_error(&pose.p, &pose.r, &at.p, &at.r), j)
 }
 
@@ -176,19 +200,57 @@ pub fn polished(g: &Geometry<6>, q: [f64; 6], pose: &Pose, fit: Fit) -> [f64; 6]
     if fit <= Fit::Checked {
         return q;
     }
-    let q = polish(g, q, pose);
+    polished_holding(g, q, pose, &[false; 6]).0
+}
+
+/// [`polished`] for a branch on a continuum of solutions ([`Fit::Free`]) whose `free`
+/// joints took the caller's values: Gauss–Newton's least-norm steps would move them
+/// along it (7.8e-7 rad on the iiwa at a straight elbow, where only q3 + q5 is fixed), so
+/// they are held first; where the others alone do not bring it within rounding of the
+/// pose (a joint that equals its free value by chance, and must move), all are polished.
+pub fn polished_keeping(
+    g: &Geometry<6>,
+    q: [f64; 6],
+    pose: &Pose,
+    fit: Fit,
+    free: &[f64; 6],
+) -> [f64; 6] {
+    let held: [bool; 6] =
+        core::array::from_fn(|i| fit == Fit::Free && (q[i] == free[i] || q[i] == wrap(free[i])));
+    if !held.contains(&true) {
+        return polished(g, q, pose, fit);
+    }
+    match polished_holding(g, q, pose, &held) {
+        (kept, true) => kept,
+        (_, false) => polished(g, q, pose, fit),
+    }
+}
+
+/// [`polished`] with the `held` joints kept where they are; whether it converged (within
+/// rounding of the pose).
+fn polished_holding(
+    g: &Geometry<6>,
+    q: [f64; 6],
+    pose: &Pose,
+    held: &[bool; 6],
+) -> ([f64; 6], bool) {
+    let q = polish_holding(g, q, pose, held);
     let size = 1.0 + pose.p.amax();
     let miss = pose_miss(g, pose, &q);
     // Converged already, or too far for a branch that reaches the pose
     // (its least-squares nearest: damped steps would only spend their rounds).
-    if miss <= STALLED.0 * size || miss > STALLED.1 * size || miss.is_nan() {
-        return q;
+    if miss <= STALLED.0 * size {
+        return (q, true);
     }
-    let damped = levenberg_marquardt(g, q, pose, DAMPED_ROUNDS);
-    if pose_miss(g, pose, &damped) < miss {
-        damped
+    if miss > STALLED.1 * size || miss.is_nan() {
+        return (q, false);
+    }
+    let damped = levenberg_marquardt_holding(g, q, pose, DAMPED_ROUNDS, held);
+    let damped_miss = pose_miss(g, pose, &damped);
+    if damped_miss < miss {
+        (damped, damped_miss <= STALLED.0 * size)
     } else {
-        q
+        (q, false)
     }
 }
 

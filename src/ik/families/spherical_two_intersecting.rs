@@ -10,7 +10,7 @@ use super::position::{shoulder_elbow, shoulder_slide};
 use super::wrist::{with_wrist, Wrist};
 use super::{regular_first, Solvers, WristPair};
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
-use crate::ik::polish::{polish, polished};
+use crate::ik::polish::{polish, polished_keeping};
 use crate::ik::regular;
 use crate::ik::setup::wrist_centre;
 use crate::ik::solutions::Candidates;
@@ -76,34 +76,39 @@ pub fn spherical_two_intersecting_by_branch(
         with_wrist((g, pose), &wrist, q123, wrist_of, fit.and(far), free, out);
     });
     if skew <= SHOULDER_GRAZING {
-        polish_all(g, pose, out);
+        polish_all(g, pose, free, out);
     } else {
-        polish_singular(g, pose, out);
+        polish_singular(g, pose, free, out);
     }
 }
 
-/// The singular candidates ([`Fit::Double`], [`Fit::Free`]) brought onto `pose` on `fk`
-/// ([`polished`]): at a straight elbow the wrist centre is on the shoulder's second axis,
-/// SP2's circles touch, and the double root's rounding, amplified by its square root,
-/// left the iiwa with joint 2 locked at 0.109 (its shoulder 0.109 rad from parallel,
-/// past [`SHOULDER_GRAZING`]) 1.4e-7 off a pose it reaches.
+/// The singular candidates ([`Fit::Double`], [`Fit::Free`]) brought onto `pose` on `fk`,
+/// a continuum's free joints kept at the caller's values ([`polished_keeping`]): at a
+/// straight elbow the wrist centre is on the shoulder's second axis, SP2's circles touch,
+/// and the double root's rounding, amplified by its square root, left the iiwa with
+/// joint 2 locked at 0.109 (its shoulder 0.109 rad from parallel, past
+/// [`SHOULDER_GRAZING`]) 1.4e-7 off a pose it reaches.
 #[cold]
 #[inline(never)]
-fn polish_singular(g: &Geometry<6>, pose: &Pose, out: &mut Candidates<6, 8>) {
+fn polish_singular(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
     for c in out.as_mut_slice() {
         if matches!(c.fit, Fit::Double | Fit::Free) {
-            c.q = polished(g, c.q, pose, c.fit);
+            c.q = polished_keeping(g, c.q, pose, c.fit, free);
         }
     }
 }
 
-/// Every candidate brought onto `pose` on `fk` (out of line: a grazing shoulder is rare,
-/// and the regular path keeps its code as it was).
+/// Every candidate brought onto `pose` on `fk`, a continuum's free joints kept at the
+/// caller's values ([`polished_keeping`]) (out of line: a grazing shoulder is rare, and
+/// the regular path keeps its code as it was).
 #[cold]
 #[inline(never)]
-fn polish_all(g: &Geometry<6>, pose: &Pose, out: &mut Candidates<6, 8>) {
+fn polish_all(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
     for c in out.as_mut_slice() {
-        c.q = polish(g, c.q, pose);
+        c.q = match c.fit {
+            Fit::Free => polished_keeping(g, c.q, pose, c.fit, free),
+            _ => polish(g, c.q, pose),
+        };
     }
 }
 
