@@ -72,7 +72,7 @@ use core::cell::OnceCell;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use elimination::System;
 pub use formulation::{Formulation, FORMULATIONS};
-use roots::{eigen_angle, REAL, SPLIT};
+use roots::{REAL, SPLIT};
 
 /// A branch whose Jacobian's Hadamard ratio is below this is flagged singular
 /// ([`Fit::Double`]): `finish` then names the vanishing factors.
@@ -504,10 +504,11 @@ fn solve_with(
     for &(x, im) in &roots[..n] {
         let (branches, count, wider) = sys.back_substitute(x);
         // Whether a branch keeps this root's value of the eigen joint (see the end).
-        let (eigen, value) = (sys.joints[0], eigen_angle(x));
-        let mut kept = false;
+        let (eigen, mut kept) = (sys.joints[0], false);
         shared |= (wider || count == 0) && im <= REAL;
         for mut q in branches.into_iter().take(count) {
+            // The root's value, as the back-substitution set it.
+            let value = q[eigen];
             // The eliminated joint by SP1: rot(h_f, q_f) = (R before f)ᵀ R06 (R after f)ᵀ.
             let turn = |j: usize| rot(&g.h[j], q[j]);
             let before = (0..f).fold(M3::identity(), |r, j| r * turn(j));

@@ -17,11 +17,6 @@ pub(super) const REAL: f64 = 1e-7;
 /// Within this, tried as a double root split by rounding (kept if it reaches the pose).
 const NEAR_REAL: f64 = 1e-3;
 
-/// The eigen joint's value at the eigenvalue `x` (`x = tan((qe − φ)/2)`, φ its offset).
-pub(super) fn eigen_angle(x: f64) -> f64 {
-    OFFSETS[0] + 2.0 * atan2(x, 1.0)
-}
-
 /// Francis double-shift sweeps allowed for the 24 × 24 companion matrix: ~2 per
 /// eigenvalue converge; far more means an input it does not converge on (no solutions
 /// then, never a hang).
@@ -92,7 +87,7 @@ impl System {
     /// one; and whether the null space has more dimensions than that (more solutions
     /// share the value than are read here: the CRX's two pairs at q2 = 0).
     pub(super) fn back_substitute(&self, x: f64) -> ([[f64; 6]; 2], usize, bool) {
-        let qe = eigen_angle(x);
+        let qe = OFFSETS[0] + 2.0 * atan2(x, 1.0);
         // M(x) / (1 + x²): bounded as x → ∞.
         let scale = 1.0 / (1.0 + x * x);
         let [c, b, a] = &self.pencil;
