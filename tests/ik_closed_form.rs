@@ -419,10 +419,10 @@ general_self_test!(
     }
 );
 /// Singular poses of the Jaco (its wrist at q4 = q5 = 0, from the self-test at other
-/// seeds) that the general 6R lost under some hint states: a fold's double root whose
+/// seeds) that the general 6R lost when solved from some formulations: a fold's double root whose
 /// eigen-joint value a nearby solution shares (its null vectors read as the neighbours'
 /// solutions, or as nothing), and a quadruple one (q2 = … = q5 = 0) Gauss–Newton left
-/// 1e-10 off. Under every formulation the hint can start at, a branch within
+/// 1e-10 off. Started from every formulation (`Hint::at`), a branch within
 /// [`FOLD_GAP`] of the generating configuration reaches the pose and is flagged singular.
 #[test]
 fn kinova_jaco_folds_under_every_hint() {

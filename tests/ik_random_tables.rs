@@ -509,6 +509,7 @@ fn self_test_counting(
             revolute: &revolute,
             limits: &limits,
             reaching_only: false,
+            hint: None,
         };
         let sols = solve_pose(&problem, &error);
         if plan.wrist == WristPair::HalfTurn {
@@ -775,6 +776,7 @@ offset = "-pi/2"
             revolute: &[true; 6],
             limits: &[[-PI, PI]; 6],
             reaching_only: false,
+            hint: None,
         },
         &error,
     );

@@ -60,6 +60,8 @@ pub struct Solver {
     task_rows: Option<Vec<usize>>,
     /// The free joints' values when the caller gives none.
     zeros: Vec<f64>,
+    /// The general 6R's formulations, read on the first pose (shared by threads).
+    hint: kinegen::ik::families::Hint,
 }
 
 /// Registers of a [`Solver`]'s programs: one per thread, reused from pose to pose.
@@ -136,6 +138,7 @@ impl Solver {
             fk: Program::new(&model.sym, chain, &fk_ids),
             factors: Program::new(&model.sym, chain, &factor_ids),
             zeros: vec![0.0; chain.dof()],
+            hint: kinegen::ik::families::Hint::new(),
             task_rows: match ik.plan.family {
                 Family::Planar { .. } | Family::Position(_) | Family::CartesianYaw { .. } => chain
                     .task
@@ -540,6 +543,7 @@ impl Solver {
             revolute: &self.revolute,
             limits: &self.limits,
             reaching_only,
+            hint: Some(&self.hint),
         };
         match arm_angle {
             Some(psi) => solve_arm_angle_into(&problem, psi, &checks, out),

@@ -375,7 +375,8 @@ fn seeded(chain: &Chain, model: &IkModel, ty: &str, locked: Option<usize>) -> Me
         },
     ]);
     if *family == Family::General6r {
-        // Which of the elimination's forms is regular for this arm, found on the first call.
+        // Which of the elimination's forms are regular for this arm, read on the first call
+        // at a reference pose (the same whatever pose comes first).
         lets.push(
             "static HINT: ::kinegen::ik::families::Hint = ::kinegen::ik::families::Hint::new();"
                 .into(),

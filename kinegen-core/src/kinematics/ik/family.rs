@@ -614,7 +614,7 @@ fn steps_general(j: impl Fn(usize) -> usize) -> Vec<String> {
     let (a, b, c, d, e, f) = (j(0), j(1), j(2), j(3), j(4), j(5));
     vec![
         format!(
-            "the loop e^(ξ{a} q{a}) ⋯ e^(ξ{f} q{f}) M T⁻¹ = I; a joint k's point and direction (p_k, h_k) do not move with q_k: carried round the loop from k, split after two joints (three on the other side) — Raghavan and Roth's form, e^(ξ{c} q{c}) e^(ξ{d} q{d}) e^(ξ{e} q{e}) (p{f}, h{f}) = e^(−ξ{b} q{b}) e^(−ξ{a} q{a}) (pT, lT), first; twelve such forms, the first not degenerate for this arm used (remembered across calls)"
+            "the loop e^(ξ{a} q{a}) ⋯ e^(ξ{f} q{f}) M T⁻¹ = I; a joint k's point and direction (p_k, h_k) do not move with q_k: carried round the loop from k, split after two joints (three on the other side) — Raghavan and Roth's form, e^(ξ{c} q{c}) e^(ξ{d} q{d}) e^(ξ{e} q{e}) (p{f}, h{f}) = e^(−ξ{b} q{b}) e^(−ξ{a} q{a}) (pT, lT), first; twelve such forms, the first well conditioned at a reference pose used (read once per arm; another where a pose makes it ill conditioned)"
         ),
         "both sides' 14 quantities p, l, p·p, p·l, p × l, (p·p) l − 2 (p·l) p: linear in the nine products of the three-joint side's inner two joints' {1, cos, sin}, with coefficients linear in the outer joint's {1, cos, sin}, and linear in the nine products of the two-joint side's — coefficients read off the geometry on a grid of thirds of a turn (exact three-point Fourier sums)"
             .to_string(),

@@ -38,8 +38,9 @@
 //! split after two joints or three — twelve forms ([`FORMULATIONS`], `formulation.rs`).
 //! Special geometry makes some of them degenerate for every pose (the Jaco: ten of
 //! twelve), and special poses (joints at right angles, the tool along axis 1) all of them
-//! or nearly: the first regular form is used and remembered ([`Hint`]); where it is ill
-//! conditioned for a pose, the best conditioned form; where a value of its eigen joint is
+//! or nearly: the first form well conditioned at a reference pose is the arm's, read once
+//! with the ones degenerate for every pose and kept ([`Hint`]); where it is ill
+//! conditioned for a pose, the next well conditioned, else the best conditioned; where a value of its eigen joint is
 //! shared by more solutions than the null space separates (the CRX at q2 = 0, where two
 //! pairs share it: found by a split root, an odd number of solutions, or roots that give
 //! none), the forms with other eigen joints too; where every form degenerates, the
@@ -68,8 +69,8 @@ use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish, pose_miss, 
 use crate::ik::solutions::Candidates;
 use crate::ik::subproblems::{sp1_angle, wrap, Fit};
 use crate::math::abs;
-use core::cell::OnceCell;
-use core::sync::atomic::{AtomicUsize, Ordering};
+use core::cell::UnsafeCell;
+use core::sync::atomic::{AtomicBool, Ordering};
 use elimination::System;
 pub use formulation::{Formulation, FORMULATIONS};
 use roots::{REAL, SPLIT};
@@ -110,11 +111,12 @@ pub fn general_6r<const K: usize>(
 ) {
     let mut found = Found::default();
     let reached = |q: &[f64; 6]| reaches(g, q, pose);
-    let (conditioning, shared) = eliminate_and_solve(g, pose, free, hint, &mut found);
+    let start = hint.start(g);
+    let (conditioning, shared) = eliminate_and_solve(g, pose, free, start, &mut found);
     // A value of the eigen joint shared by more solutions than read that no other eigen
     // joint separates either: the pose moved off, as for a degenerate one.
     let unresolved =
-        shared.is_some() && !with_other_eigen_joints(g, pose, free, shared, &mut found);
+        shared.is_some() && !with_other_eigen_joints(g, pose, free, start, shared, &mut found);
     if unresolved
         || conditioning < WELL_CONDITIONED
         || !found.as_slice().iter().any(|c| reached(&c.q))
@@ -139,7 +141,7 @@ pub fn general_6r<const K: usize>(
             -10.0 * NUDGE,
         ] {
             let mut seeds = Found::default();
-            let _ = eliminate_and_solve(g, &nudged(pose, size), free, hint, &mut seeds);
+            let _ = eliminate_and_solve(g, &nudged(pose, size), free, start, &mut seeds);
             for s in seeds.as_slice() {
                 // Tracked back in steps of a tenth: near-singular poses have solutions
                 // ~NUDGE / σ apart, and one Newton run from the nudged pose's could land
@@ -154,20 +156,8 @@ pub fn general_6r<const K: usize>(
                 // Gauss–Newton stalls near two solutions close together (the Gen3's pairs
                 // 0.03–0.06 rad apart, |det J| ~1e-6: 5e-8 off after its rounds), and
                 // converges only linearly onto a singular one (the Jaco at q2 = … = q5 = 0:
-                // 1e-10 off), where damped steps still converge; kept only where they reach
-                // the pose closer, so a branch that cannot does not move.
-                let q = if reaches(g, &q, pose) && pose_miss(g, pose, &q) <= SETTLED {
-                    q
-                } else {
-                    let damped = levenberg_marquardt(g, q, pose, DAMPED_ROUNDS);
-                    let closer = pose_miss(g, pose, &damped) < pose_miss(g, pose, &q);
-                    if reaches(g, &damped, pose) && closer {
-                        damped
-                    } else {
-                        q
-                    }
-                }
-                .map(wrap);
+                // 1e-10 off).
+                let q = settle(g, q, pose).map(wrap);
                 let room = found.as_slice().len() < FOUND;
                 if room && !found.as_slice().iter().any(|c| same(&c.q, &q)) {
                     // Out of reach (or a workspace-boundary pose Newton cannot settle on):
@@ -342,6 +332,24 @@ const REACHES: f64 = 1e-9;
 /// steps.
 const SETTLED: f64 = 1e-11;
 
+/// `q` where Newton's steps left it, unless it misses `pose` by more than [`SETTLED`]:
+/// then Levenberg–Marquardt's damped steps from it, kept only where they reach the pose
+/// closer (a branch that cannot does not move). Gauss–Newton stalls beside two solutions
+/// close together (each full step overshoots along the near-null direction) and converges
+/// only linearly onto a singular one; damped steps still converge there.
+fn settle(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
+    let m = pose_miss(g, pose, &q);
+    if m <= SETTLED {
+        return q;
+    }
+    let damped = levenberg_marquardt(g, q, pose, DAMPED_ROUNDS).map(wrap);
+    if reaches(g, &damped, pose) && pose_miss(g, pose, &damped) < m {
+        damped
+    } else {
+        q
+    }
+}
+
 /// How far a pose the elimination is degenerate for is moved ([`nudged`]), both ways:
 /// far enough that the moved pose's pencil is regular (pivot ratio ~1e-6), near enough
 /// that tracking back is a few Newton runs.
@@ -358,30 +366,32 @@ fn nudged(pose: &Pose, size: f64) -> Pose {
     }
 }
 
-/// Steps 1–6 on a formulation regular for this arm and pose (the hint's if it is well
-/// conditioned, else the best conditioned); the branches into `found`, that pencil's
+/// Steps 1–6 on a formulation regular for this arm and pose (the arm's first if it is
+/// well conditioned, else the best conditioned); the branches into `found`, that pencil's
 /// pivot ratio (0: none regular, nothing found) and, where a value of its eigen joint
 /// was shared by more solutions than the back-substitution separates, that joint.
 fn eliminate_and_solve(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
-    hint: &Hint,
+    start: Start,
     found: &mut Found,
 ) -> (f64, Option<usize>) {
-    // The remembered formulation where it is well conditioned for this pose; else the
-    // best conditioned of all (a pose near a degenerate one for some of them).
-    let first = hint.get();
+    // The arm's first formulation where it is well conditioned for this pose; else the
+    // next that is, else the best conditioned of all (a pose near a degenerate one for
+    // some of them).
     // The best so far by its ratio and index only, built again at the end: one system on
     // the stack at a time (9 kB each; the Cortex-M4F's stack), and the rebuild is rare.
     let mut best: Option<(f64, usize)> = None;
     for i in 0..FORMULATIONS.len() {
-        let k = (first + i) % FORMULATIONS.len();
+        let k = (start.first + i) % FORMULATIONS.len();
+        if start.regular & (1 << k) == 0 {
+            continue;
+        }
         let Some(sys) = System::new(g, pose, FORMULATIONS[k]) else {
             continue;
         };
         if sys.ratio >= WELL_CONDITIONED {
-            hint.set(k);
             let shared = solve_with(g, pose, free, &sys, found);
             return (sys.ratio, shared.then_some(sys.joints[0]));
         }
@@ -389,9 +399,8 @@ fn eliminate_and_solve(
             best = Some((sys.ratio, k));
         }
     }
-    match best.and_then(|(_, k)| Some((System::new(g, pose, FORMULATIONS[k])?, k))) {
-        Some((sys, k)) => {
-            hint.set(k);
+    match best.and_then(|(_, k)| System::new(g, pose, FORMULATIONS[k])) {
+        Some(sys) => {
             let shared = solve_with(g, pose, free, &sys, found);
             (sys.ratio, shared.then_some(sys.joints[0]))
         }
@@ -412,16 +421,17 @@ fn with_other_eigen_joints(
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
+    start: Start,
     mut shared: Option<usize>,
     found: &mut Found,
 ) -> bool {
     let mut tried = [false; 6];
-    for form in FORMULATIONS {
+    for (k, form) in FORMULATIONS.into_iter().enumerate() {
         let Some(joint) = shared else {
             return true;
         };
         tried[joint] = true;
-        if tried[form.eigen_joint()] {
+        if tried[form.eigen_joint()] || start.regular & (1 << k) == 0 {
             continue;
         }
         let Some(sys) = System::new(g, pose, form) else {
@@ -453,31 +463,166 @@ fn with_other_eigen_joints(
 /// the others (regular poses of the Jaco: 1e-5 to 1).
 const WELL_CONDITIONED: f64 = 1e-3;
 
-/// Which formulation ([`FORMULATIONS`]) was regular last time: special geometry (two
-/// parallel axes, a 60° wrist) makes some of them degenerate for every pose, and finding
-/// that out costs an elimination each. A generated `ik` keeps one in a `static` — a hint
-/// only: a formulation degenerate for some pose makes the solver go on to the next.
-#[derive(Debug, Default)]
-pub struct Hint(AtomicUsize);
+/// Which formulation ([`FORMULATIONS`]) an arm's poses start with, and which are regular
+/// at all: special geometry (two parallel axes, a 60° wrist) makes some of them
+/// degenerate for every pose, and finding that out costs an elimination each (~10 µs;
+/// ten of the Jaco's twelve). Both are read once per arm at a reference pose (the product
+/// of exponentials at [`REFERENCE`], the tool left out) and kept: a pure function of the
+/// arm's axes, so a pose's solutions do not depend on the poses solved before it, in
+/// which order, or on which thread. A generated `ik` keeps one in a `static`; a hint
+/// handed another arm's geometry (a 7-joint arm with a middle joint locked at another
+/// value) reads that arm's again.
+///
+/// ```
+/// use kinegen::ik::families::{general_6r, Hint};
+/// use kinegen::ik::geometry::{Geometry, M3, V3};
+/// use kinegen::ik::solutions::Candidates;
+/// let unit = |x: f64, y: f64, z: f64| V3::new(x, y, z).normalize();
+/// let g = Geometry {
+///     h: [unit(0.0, 0.0, 1.0), unit(0.1, 1.0, 0.2), unit(0.3, 0.9, -0.1),
+///         unit(1.0, 0.2, 0.1), unit(0.2, 1.0, -0.3), unit(0.9, 0.1, 0.4)],
+///     p: [V3::zeros(), V3::new(0.05, 0.0, 0.3), V3::new(0.4, 0.1, 0.35),
+///         V3::new(0.5, 0.05, 0.6), V3::new(0.7, 0.12, 0.55), V3::new(0.8, 0.0, 0.6)],
+///     prismatic: [false; 6],
+///     r_tool: M3::identity(),
+///     p_tool: V3::new(0.9, 0.0, 0.65),
+/// };
+/// let (a, b) = (g.fk(&[0.3, -0.7, 0.4, 1.1, -0.5, 0.8]), g.fk(&[1.0; 6]));
+/// // Solving another pose first changes nothing, to the bit.
+/// let (kept, fresh) = (Hint::new(), Hint::new());
+/// let (mut x, mut y) = (Candidates::<6, 16>::default(), Candidates::<6, 16>::default());
+/// general_6r(&g, &b, &[0.0; 6], &kept, &mut x);
+/// x = Candidates::default();
+/// general_6r(&g, &a, &[0.0; 6], &kept, &mut x);
+/// general_6r(&g, &a, &[0.0; 6], &fresh, &mut y);
+/// assert_eq!(x.as_slice(), y.as_slice());
+/// ```
+#[derive(Debug)]
+pub struct Hint {
+    /// A start fixed by [`Hint::at`], every formulation tried; else the arm's.
+    fixed: Option<usize>,
+    /// Held while `arm` is read or written; a caller that finds it held (another
+    /// thread, an interrupt) reads its arm's start itself instead of waiting.
+    busy: AtomicBool,
+    /// The last arm's axes and its start.
+    arm: UnsafeCell<Option<([u64; 36], Start)>>,
+}
+
+// `arm` is only touched by the caller that set `busy`.
+unsafe impl Sync for Hint {}
+
+impl Default for Hint {
+    fn default() -> Hint {
+        Hint::new()
+    }
+}
 
 impl Hint {
-    /// Start with Raghavan and Roth's own formulation.
+    /// The arm's own start, read at the reference pose on first use.
     pub const fn new() -> Hint {
-        Hint(AtomicUsize::new(0))
+        Hint {
+            fixed: None,
+            busy: AtomicBool::new(false),
+            arm: UnsafeCell::new(None),
+        }
     }
 
-    /// Start with formulation `k` of [`FORMULATIONS`] (modulo their number): the state a
-    /// hint is in after a pose that needed that one — how a test reaches every state.
+    /// Start with formulation `k` of [`FORMULATIONS`] (modulo their number) and try every
+    /// one where it is ill conditioned: how a test makes each formulation solve a pose.
     pub const fn at(k: usize) -> Hint {
-        Hint(AtomicUsize::new(k % FORMULATIONS.len()))
+        Hint {
+            fixed: Some(k % FORMULATIONS.len()),
+            busy: AtomicBool::new(false),
+            arm: UnsafeCell::new(None),
+        }
     }
 
-    fn get(&self) -> usize {
-        self.0.load(Ordering::Relaxed) % FORMULATIONS.len()
+    /// Where `g`'s poses start (see the type).
+    fn start(&self, g: &Geometry<6>) -> Start {
+        if let Some(first) = self.fixed {
+            return Start {
+                first,
+                regular: ALL,
+            };
+        }
+        let axes = axes_bits(g);
+        if self.busy.swap(true, Ordering::Acquire) {
+            return Start::of(g);
+        }
+        // SAFETY: `busy` was false and is now ours: no other reference to `arm` exists
+        // until it is released below.
+        let arm = unsafe { &mut *self.arm.get() };
+        let start = match arm {
+            Some((bits, start)) if *bits == axes => *start,
+            _ => {
+                let start = Start::of(g);
+                *arm = Some((axes, start));
+                start
+            }
+        };
+        self.busy.store(false, Ordering::Release);
+        start
     }
+}
 
-    fn set(&self, k: usize) {
-        self.0.store(k, Ordering::Relaxed);
+/// The bits of an arm's axes and their points: what its formulations' regularity depends
+/// on (the tool only moves the target).
+fn axes_bits(g: &Geometry<6>) -> [u64; 36] {
+    core::array::from_fn(|i| {
+        let v = if i < 18 {
+            g.h[i / 3]
+        } else {
+            g.p[(i - 18) / 3]
+        };
+        v[i % 3].to_bits()
+    })
+}
+
+/// Every formulation (a bit each).
+const ALL: u16 = (1 << FORMULATIONS.len()) - 1;
+
+/// A configuration in no special position (no joint at a multiple of π/4), where an
+/// arm's formulations are tried once ([`Hint`]).
+const REFERENCE: [f64; 6] = [0.37, -1.13, 0.71, 1.29, -0.53, 2.03];
+
+/// Where an arm's poses start: the first formulation well conditioned at the reference
+/// pose (else its best conditioned), and the formulations regular there — the others are
+/// degenerate for every pose of the arm, and are not tried.
+#[derive(Clone, Copy, Debug)]
+struct Start {
+    first: usize,
+    regular: u16,
+}
+
+impl Start {
+    fn of(g: &Geometry<6>) -> Start {
+        let axes = Geometry {
+            r_tool: M3::identity(),
+            p_tool: V3::zeros(),
+            ..*g
+        };
+        let pose = axes.fk(&REFERENCE);
+        let (mut regular, mut first, mut best) = (0, None, None::<(f64, usize)>);
+        for (k, &form) in FORMULATIONS.iter().enumerate() {
+            let Some(sys) = System::new(&axes, &pose, form) else {
+                continue;
+            };
+            regular |= 1 << k;
+            if first.is_none() && sys.ratio >= WELL_CONDITIONED {
+                first = Some(k);
+            }
+            if best.is_none_or(|(ratio, _)| sys.ratio > ratio) {
+                best = Some((sys.ratio, k));
+            }
+        }
+        match first.or(best.map(|(_, k)| k)) {
+            Some(first) => Start { first, regular },
+            // None regular at a generic pose: try them all, pose by pose.
+            None => Start {
+                first: 0,
+                regular: ALL,
+            },
+        }
     }
 }
 
@@ -518,14 +663,17 @@ fn solve_with(
             q[f] = qf.theta;
             // Newton on `fk` where the back-substitution left more than rounding.
             let close = miss(g, &q, pose) <= POLISHED * (1.0 + pose.p.amax());
-            let q = if close { q } else { polish(g, q, pose) }.map(wrap);
-            // Whether the branch reaches the pose: measured once, where asked.
-            let reach = OnceCell::new();
-            let reached = || *reach.get_or_init(|| close || reaches(g, &q, pose));
-            kept |= abs(wrap(q[eigen] - value)) <= KEPT && reached();
+            let mut q = if close { q } else { polish(g, q, pose) }.map(wrap);
+            // Gauss–Newton converges only linearly onto a singular solution and stops
+            // short (the Jaco at q2 = q3 = 0: 1.4e-10 off, over `EXACT_TOLERANCE`).
+            let reached = close || reaches(g, &q, pose);
+            if !close && reached {
+                q = settle(g, q, pose);
+            }
+            kept |= abs(wrap(q[eigen] - value)) <= KEPT && reached;
             // A solution read as a root split off the real line with one null vector:
             // two met there, or more share the value (then some are missing).
-            shared |= im > SPLIT && count == 1 && reached();
+            shared |= im > SPLIT && count == 1 && reached;
             // Two eigenvalues of one solution (a double root split by rounding) polish to
             // it twice.
             if found.as_slice().iter().any(|c| same(&c.q, &q)) {
@@ -534,7 +682,7 @@ fn solve_with(
             // A root off the real line, or a vector of a two-dimensional null space (one
             // of them may be a neighbouring root's), is a solution only where it reaches
             // the pose.
-            if (im > REAL || count == 2) && !reached() {
+            if (im > REAL || count == 2) && !reached {
                 continue;
             }
             // A split root with one null vector is one configuration where two solutions
