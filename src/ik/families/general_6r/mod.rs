@@ -467,9 +467,9 @@ const WELL_CONDITIONED: f64 = 1e-3;
 /// at all: special geometry (two parallel axes, a 60° wrist) makes some of them
 /// degenerate for every pose, and finding that out costs an elimination each (~10 µs;
 /// ten of the Jaco's twelve). Both are read once per arm at a reference pose (the product
-/// of exponentials at [`REFERENCE`], the tool left out) and kept: a pure function of the
-/// arm's axes, so a pose's solutions do not depend on the poses solved before it, in
-/// which order, or on which thread. A generated `ik` keeps one in a `static`; a hint
+/// of exponentials at a fixed configuration in no special position, the tool left out)
+/// and kept: a pure function of the arm's axes, so a pose's solutions do not depend on
+/// the poses solved before it, in which order, or on which thread. A generated `ik` keeps one in a `static`; a hint
 /// handed another arm's geometry (a 7-joint arm with a middle joint locked at another
 /// value) reads that arm's again.
 ///
