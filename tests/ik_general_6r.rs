@@ -418,7 +418,8 @@ fn gen3_degenerate_poses_keep_every_solution() {
 /// the arm has solved other poses before (in either order) or none. Special poses (joints
 /// snapped to right angles, 40 % of them) are where the formulation is chosen pose by pose:
 /// a hint that followed the last such pose's formulation gave the next pose's solutions
-/// another formulation's rounding, or at a degenerate pose other solutions.
+/// another formulation's rounding, or at a degenerate pose other solutions. The hint is
+/// handed three arms in turn.
 #[test]
 fn solutions_do_not_depend_on_the_poses_before() {
     use kinegen::ik::subproblems::Fit;
@@ -429,11 +430,17 @@ fn solutions_do_not_depend_on_the_poses_before() {
         general_6r(g, pose, &[0.0; 6], hint, &mut out);
         out.as_slice().iter().map(|c| (c.q, c.fit)).collect()
     };
+    let mut rng = XorShift64::new(30);
+    // The Jaco and the CRX share their regular formulations (two of twelve); a random arm
+    // has all twelve, and starts with another.
     let arms = [
         KinovaJaco::default().ik_geometry(),
         FanucCrx10iaL::default().ik_geometry(),
+        random_arm(&mut rng).0,
     ];
-    let mut rng = XorShift64::new(30);
+    // One hint for all three, as a middle joint locked at another value hands it other
+    // axes: each arm's formulations are read again.
+    let kept = Hint::new();
     for g in arms {
         let poses: Vec<Pose> = (0..60)
             .map(|_| {
@@ -447,7 +454,6 @@ fn solutions_do_not_depend_on_the_poses_before() {
                 g.fk(&q)
             })
             .collect();
-        let kept = Hint::new();
         let first: Vec<Solved> = poses.iter().map(|p| solve(&g, p, &kept)).collect();
         for (pose, solved) in poses.iter().zip(&first) {
             assert_eq!(&solve(&g, pose, &Hint::new()), solved, "{pose:?}");
