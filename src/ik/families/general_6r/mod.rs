@@ -40,12 +40,13 @@
 //! twelve), and special poses (joints at right angles, the tool along axis 1) all of them
 //! or nearly: the first form well conditioned at a reference pose is the arm's, read once
 //! with the ones degenerate for every pose and kept ([`Hint`]); where it is ill
-//! conditioned for a pose, the next well conditioned, else the best conditioned; where a value of its eigen joint is
-//! shared by more solutions than the null space separates (the CRX at q2 = 0, where two
-//! pairs share it: found by a split root, an odd number of solutions, or roots that give
-//! none), the forms with other eigen joints too; where every form degenerates, the
-//! solutions of the pose moved off by ±1e-5, ±1e-4 and ±1e-3, tracked back by Newton
-//! steps (damped ones where Gauss–Newton stalls beside a close pair of solutions).
+//! conditioned for a pose, the next well conditioned, else the best conditioned; where a
+//! value of its eigen joint is shared by more solutions than the null space separates
+//! (the CRX at q2 = 0, where two pairs share it: found by a split root, an odd number of
+//! solutions, or roots that give none), the forms with other eigen joints too; where
+//! every form degenerates, the solutions of the pose moved off by ±1e-5, ±1e-4 and ±1e-3,
+//! tracked back by Newton steps. Damped steps follow wherever Gauss–Newton stalls beside a
+//! close pair of solutions or stops short of a singular one.
 //! Branches within 2e-6 rad are one double root (merged, flagged singular), as is a branch
 //! whose Jacobian is singular to rounding (Hadamard's ratio below 1e-7). Where the
 //! solutions form a continuum (axes that coincide at a special pose), the eigenvalues are
@@ -367,9 +368,10 @@ fn nudged(pose: &Pose, size: f64) -> Pose {
 }
 
 /// Steps 1–6 on a formulation regular for this arm and pose (the arm's first if it is
-/// well conditioned, else the best conditioned); the branches into `found`, that pencil's
-/// pivot ratio (0: none regular, nothing found) and, where a value of its eigen joint
-/// was shared by more solutions than the back-substitution separates, that joint.
+/// well conditioned, else the next that is, else the best conditioned); the branches into
+/// `found`, that pencil's pivot ratio (0: none regular, nothing found) and, where a value
+/// of its eigen joint was shared by more solutions than the back-substitution separates,
+/// that joint.
 fn eliminate_and_solve(
     g: &Geometry<6>,
     pose: &Pose,
@@ -469,9 +471,9 @@ const WELL_CONDITIONED: f64 = 1e-3;
 /// ten of the Jaco's twelve). Both are read once per arm at a reference pose (the product
 /// of exponentials at a fixed configuration in no special position, the tool left out)
 /// and kept: a pure function of the arm's axes, so a pose's solutions do not depend on
-/// the poses solved before it, in which order, or on which thread. A generated `ik` keeps one in a `static`; a hint
-/// handed another arm's geometry (a 7-joint arm with a middle joint locked at another
-/// value) reads that arm's again.
+/// the poses solved before it, in which order, or on which thread. A generated `ik` keeps
+/// one in a `static`; a hint handed another arm's geometry (a 7-joint arm with a middle
+/// joint locked at another value) reads that arm's again.
 ///
 /// ```
 /// use kinegen::ik::families::{general_6r, Hint};
