@@ -67,7 +67,7 @@ mod spurious;
 
 use crate::ik::geometry::{orthogonal, rot, Geometry, Pose, M3, V3};
 use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish, pose_miss, DAMPED_ROUNDS};
-use crate::ik::solutions::Candidates;
+use crate::ik::solutions::{pose_matrix, residual, Candidates};
 use crate::ik::subproblems::{sp1_angle, wrap, Fit};
 use crate::math::abs;
 use core::cell::UnsafeCell;
@@ -158,7 +158,7 @@ pub fn general_6r<const K: usize>(
                 // 0.03–0.06 rad apart, |det J| ~1e-6: 5e-8 off after its rounds), and
                 // converges only linearly onto a singular one (the Jaco at q2 = … = q5 = 0:
                 // 1e-10 off).
-                let q = settle(g, q, pose).map(wrap);
+                let q = settle(g, q, pose, pose_miss(g, pose, &q)).map(wrap);
                 let room = found.as_slice().len() < FOUND;
                 if room && !found.as_slice().iter().any(|c| same(&c.q, &q)) {
                     // Out of reach (or a workspace-boundary pose Newton cannot settle on):
@@ -333,13 +333,12 @@ const REACHES: f64 = 1e-9;
 /// steps.
 const SETTLED: f64 = 1e-11;
 
-/// `q` where Newton's steps left it, unless it misses `pose` by more than [`SETTLED`]:
-/// then Levenberg–Marquardt's damped steps from it, kept only where they reach the pose
+/// `q` where Newton's steps left it, unless it misses `pose` by more than [`SETTLED`]
+/// (`m`, its largest entry, as [`pose_miss`] measures it): then Levenberg–Marquardt's damped steps from it, kept only where they reach the pose
 /// closer (a branch that cannot does not move). Gauss–Newton stalls beside two solutions
 /// close together (each full step overshoots along the near-null direction) and converges
 /// only linearly onto a singular one; damped steps still converge there.
-fn settle(g: &Geometry<6>, q: [f64; 6], pose: &Pose) -> [f64; 6] {
-    let m = pose_miss(g, pose, &q);
+fn settle(g: &Geometry<6>, q: [f64; 6], pose: &Pose, m: f64) -> [f64; 6] {
     if m <= SETTLED {
         return q;
     }
@@ -665,13 +664,19 @@ fn solve_with(
             q[f] = qf.theta;
             // Newton on `fk` where the back-substitution left more than rounding.
             let close = miss(g, &q, pose) <= POLISHED * (1.0 + pose.p.amax());
-            let mut q = if close { q } else { polish(g, q, pose) }.map(wrap);
+            let q = if close { q } else { polish(g, q, pose) }.map(wrap);
             // Gauss–Newton converges only linearly onto a singular solution and stops
-            // short (the Jaco at q2 = q3 = 0: 1.4e-10 off, over `EXACT_TOLERANCE`).
-            let reached = close || reaches(g, &q, pose);
-            if !close && reached {
-                q = settle(g, q, pose);
-            }
+            // short (the Jaco at q2 = q3 = 0: 1.4e-10 off, over `EXACT_TOLERANCE`). One
+            // `fk` tells both whether the branch reaches the pose and by how much it misses.
+            let (q, reached) = if close {
+                (q, true)
+            } else {
+                let at = g.fk(&q);
+                match distance(&at, pose) <= REACHES * (1.0 + pose.p.amax()) {
+                    true => (settle(g, q, pose, residual(&pose_matrix(&at), pose)), true),
+                    false => (q, false),
+                }
+            };
             kept |= abs(wrap(q[eigen] - value)) <= KEPT && reached;
             // A solution read as a root split off the real line with one null vector:
             // two met there, or more share the value (then some are missing).
@@ -749,6 +754,10 @@ fn reaches(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> bool {
 
 /// How far `fk(q)` is from `pose`: position (in the arm's units) plus rotation.
 fn miss(g: &Geometry<6>, q: &[f64; 6], pose: &Pose) -> f64 {
-    let at = g.fk(q);
+    distance(&g.fk(q), pose)
+}
+
+/// [`miss`] of the pose `at`.
+fn distance(at: &Pose, pose: &Pose) -> f64 {
     (at.p - pose.p).norm() + (at.r - pose.r).norm()
 }
