@@ -711,17 +711,41 @@ locked_self_test!(
 );
 // Where the locked joint leaves the shoulder's axes within ~0.1 rad of parallel, the
 // branches are polished on `fk` (no exact branch misses the pose: 6 such failures of
-// 30 000 before). The URDF iiwa with joint 1 free, a known gap until then (q4 = 0 merged
-// with its neighbour, 1 of 10 000), passes; two are still known gaps (issue 27), kept as
-// reproducers, at a straight elbow (q4 ≈ 0) with that near-parallel shoulder.
-locked_self_test!(
-    kuka_iiwa14_joint_2_free,
-    IiwaJoint2,
-    142,
-    None,
-    ignore = "known gap: q4 = q6 = 0 (two continua), q2 = -0.019 locked: ik_near 0.62 rad away, \
-              the wrist's free joint not the caller's (issue 27)"
-);
+// 30 000 before), then slid along any continuum they lie on to the caller's values
+// (`ik::continuum`: 1 failure of 10 000 here before it). The URDF iiwa with joint 1 free,
+// a known gap until then (q4 = 0 merged with its neighbour, 1 of 10 000), passes; the
+// URDF iiwa with joint 2 free is still a known gap (issue 27), kept as a reproducer, at a
+// straight elbow (q4 ≈ 0) with that near-parallel shoulder.
+locked_self_test!(kuka_iiwa14_joint_2_free, IiwaJoint2, 142);
+
+/// The pose of that self-test's failure until `ik::continuum`: a straight elbow and a
+/// wrist at q6 = 0, so axes 3, 5 and 7 are one line and only q3 + q5 + q7 is fixed (two
+/// continua), with joint 2 locked at −0.019 (the shoulder 0.019 rad from parallel, so the
+/// subproblems see neither singularity through their rounding). `ik_near` gave a
+/// configuration 0.62 rad away: another split of the sum. Now the caller's, and the four
+/// branches (one continuum, polished onto it at four points) are one.
+#[test]
+fn kuka_iiwa14_joint_2_free_two_continua_keep_the_callers_split() {
+    let robot = IiwaJoint2::default();
+    #[rustfmt::skip]
+    let q = [-1.501122897014201, -0.019308490922179455, -2.6032049607700003, 0.0,
+             -2.7287327335664933, 0.0, 2.6884223282490183];
+    let pose = robot.fk(&q);
+    let near = robot.ik_near(&pose, &q).expect("the arm reaches the pose");
+    assert!(
+        joint_gap(&near, &q, &IiwaJoint2::REVOLUTE) <= 1e-12,
+        "{near:?}"
+    );
+    let sols = robot.ik_with(&pose, q[1]);
+    assert_eq!(sols.len(), 1, "{:?}", sols.as_slice());
+    let b = &sols.as_slice()[0];
+    assert!(b.exact && b.at_singularity);
+    assert!(pose_error(&robot.fk(&b.q), &pose) <= 1e-10);
+    // With no caller's values (`free` = 0): q3 = q5 = 0, q7 the whole sum.
+    assert_eq!([b.q[2], b.q[4]], [0.0, 0.0]);
+    let sum = q[2] + q[4] + q[6];
+    assert!(joint_gap(&[b.q[6]], &[sum], &[true]) <= 1e-12, "{:?}", b.q);
+}
 
 /// A pose of that self-test (seed 142, its first failure until now): a straight elbow
 /// (q4 = 0, axes 3 and 5 one line, so only q3 + q5 is fixed) with joint 2 locked at
@@ -1090,14 +1114,15 @@ locked_self_test!(panda_joint_4_free, PandaJoint4, 74);
 locked_self_test!(panda_joint_5_free, PandaJoint5, 75);
 // Known gap (issue 27): with joint 6 locked near 0 the reversed chain's shoulder axes (7
 // and 5) come within a few hundredths of a radian of parallel; of 10 000 configurations,
-// at 11 singular ones `ik_near` keeps another split of the free q1 + q3 (10) or no branch
-// is flagged (1). No exact branch misses its pose; every regular one is found.
+// at 3 singular ones (q5 = 0) no branch is flagged: two exact branches at q5 = ±6e-7.
+// (8 before `ik::continuum`, where `ik_near` kept another split of the free q1 + q3.) No
+// exact branch misses its pose; every regular one is found.
 locked_self_test!(
     panda_joint_6_free,
     PandaJoint6,
     76,
     None,
-    ignore = "known gap: joint 6 free, 11 singular configurations of 10 000 (issue 27)"
+    ignore = "known gap: joint 6 free, 3 singular configurations of 10 000 (issue 27)"
 );
 exact_branches_reach!(panda_joint_6_free_exact_branches, PandaJoint6, 76);
 locked_self_test!(panda_joint_7_free, Panda, 7);

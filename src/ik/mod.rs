@@ -15,6 +15,7 @@
 //! No allocation anywhere: solution sets and solver state are on the stack.
 
 pub mod closed_form;
+pub mod continuum;
 #[cfg(feature = "std")]
 pub mod dispatch;
 pub mod families;

@@ -228,7 +228,7 @@ pub fn polished_keeping(
 
 /// [`polished`] with the `held` joints kept where they are; whether it converged (within
 /// rounding of the pose).
-fn polished_holding(
+pub(crate) fn polished_holding(
     g: &Geometry<6>,
     q: [f64; 6],
     pose: &Pose,

@@ -9,6 +9,7 @@
 use super::position::{shoulder_elbow, shoulder_slide};
 use super::wrist::{with_wrist, Wrist};
 use super::{regular_first, Solvers, WristPair};
+use crate::ik::continuum::slid_to_free;
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
 use crate::ik::polish::{polish, polished_keeping};
 use crate::ik::regular;
@@ -93,7 +94,7 @@ pub fn spherical_two_intersecting_by_branch(
 fn polish_singular(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
     for c in out.as_mut_slice() {
         if matches!(c.fit, Fit::Double | Fit::Free) {
-            c.q = polished_keeping(g, c.q, pose, c.fit, free);
+            c.q = slid_to_free(g, polished_keeping(g, c.q, pose, c.fit, free), pose, free);
         }
     }
 }
@@ -105,10 +106,11 @@ fn polish_singular(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Cand
 #[inline(never)]
 fn polish_all(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
     for c in out.as_mut_slice() {
-        c.q = match c.fit {
+        let on_pose = match c.fit {
             Fit::Free => polished_keeping(g, c.q, pose, c.fit, free),
             _ => polish(g, c.q, pose),
         };
+        c.q = slid_to_free(g, on_pose, pose, free);
     }
 }
 
