@@ -1112,18 +1112,41 @@ kinegen::kinematics! {
 
 locked_self_test!(panda_joint_4_free, PandaJoint4, 74);
 locked_self_test!(panda_joint_5_free, PandaJoint5, 75);
-// Known gap (issue 27): with joint 6 locked near 0 the reversed chain's shoulder axes (7
-// and 5) come within a few hundredths of a radian of parallel; of 10 000 configurations,
-// at 3 singular ones (q5 = 0) no branch is flagged: two exact branches at q5 = ±6e-7.
-// (8 before `ik::continuum`, where `ik_near` kept another split of the free q1 + q3.) No
-// exact branch misses its pose; every regular one is found.
-locked_self_test!(
-    panda_joint_6_free,
-    PandaJoint6,
-    76,
-    None,
-    ignore = "known gap: joint 6 free, 3 singular configurations of 10 000 (issue 27)"
-);
+// With joint 6 locked near 0 the reversed chain's shoulder axes (7 and 5) come within a
+// few hundredths of a radian of parallel, and the polished branches of a singular pose
+// are made what the subproblems would give (`on_continua`): 8 of these 10 000 failed
+// before, `ik_near` keeping another split of the free q1 + q3 (5) or no branch flagged
+// where rounding split a double root at q5 = 0 into two exact branches ±6e-7 apart (3).
+locked_self_test!(panda_joint_6_free, PandaJoint6, 76);
+
+/// A pose of that self-test's failures until the double roots were merged: q5 = 0 (a
+/// singular configuration) with joint 6 locked at 3.137, whose branches came in pairs at
+/// q5 = ±5.7e-7, exact and none flagged, so `ik_near` chose one 5.7e-7 rad off.
+#[test]
+fn panda_joint_6_free_split_double_root_is_one_flagged_branch() {
+    let robot = PandaJoint6::default();
+    #[rustfmt::skip]
+    let q = [-FRAC_PI_2, 1.1761630134909775, FRAC_PI_2, -2.119455349176037,
+             0.0, 3.137035029855188, 0.1157078465366066];
+    let pose = robot.fk(&q);
+    let sols = robot.ik_with(&pose, q[5]);
+    assert!(sols.exact().count() > 0, "{:?}", sols.as_slice());
+    for b in sols.exact() {
+        assert!(b.at_singularity, "{b:?}");
+        assert!(pose_error(&robot.fk(&b.q), &pose) <= 1e-10);
+    }
+    // No two branches are the halves of one root.
+    for (i, a) in sols.iter().enumerate() {
+        for b in &sols.as_slice()[i + 1..] {
+            assert!(joint_gap(&a.q, &b.q, &PandaJoint6::REVOLUTE) > 1e-5);
+        }
+    }
+    let near = robot.ik_near(&pose, &q).expect("the arm reaches the pose");
+    assert!(
+        joint_gap(&near, &q, &PandaJoint6::REVOLUTE) <= 1e-7,
+        "{near:?}"
+    );
+}
 exact_branches_reach!(panda_joint_6_free_exact_branches, PandaJoint6, 76);
 locked_self_test!(panda_joint_7_free, Panda, 7);
 locked_self_test!(panda_from_urdf_joint_7_free, PandaUrdf, 77);

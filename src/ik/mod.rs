@@ -18,6 +18,7 @@ pub mod closed_form;
 pub mod continuum;
 #[cfg(feature = "std")]
 pub mod dispatch;
+pub mod double_root;
 pub mod families;
 pub mod geometry;
 pub mod lanes;

@@ -10,6 +10,7 @@ use super::position::{shoulder_elbow, shoulder_slide};
 use super::wrist::{with_wrist, Wrist};
 use super::{regular_first, Solvers, WristPair};
 use crate::ik::continuum::slid_to_free;
+use crate::ik::double_root::merge_double_roots;
 use crate::ik::geometry::{flat, meet, rot, Geometry, Pose, M3, V3};
 use crate::ik::polish::{polish, polished_keeping};
 use crate::ik::regular;
@@ -92,10 +93,15 @@ pub fn spherical_two_intersecting_by_branch(
 #[cold]
 #[inline(never)]
 fn polish_singular(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
+    let mut singular = false;
     for c in out.as_mut_slice() {
         if matches!(c.fit, Fit::Double | Fit::Free) {
-            c.q = slid_to_free(g, polished_keeping(g, c.q, pose, c.fit, free), pose, free);
+            c.q = polished_keeping(g, c.q, pose, c.fit, free);
+            singular = true;
         }
+    }
+    if singular {
+        on_continua(g, pose, free, out);
     }
 }
 
@@ -106,11 +112,23 @@ fn polish_singular(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Cand
 #[inline(never)]
 fn polish_all(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
     for c in out.as_mut_slice() {
-        let on_pose = match c.fit {
+        c.q = match c.fit {
             Fit::Free => polished_keeping(g, c.q, pose, c.fit, free),
             _ => polish(g, c.q, pose),
         };
-        c.q = slid_to_free(g, on_pose, pose, free);
+    }
+    on_continua(g, pose, free, out);
+}
+
+/// Polished branches made what the subproblems give where they see a singularity: the
+/// two halves of a double root that rounding split (within
+/// [`DOUBLE_ROOT`](crate::ik::double_root::DOUBLE_ROOT)) one branch
+/// flagged [`Fit::Double`] ([`merge_double_roots`]), and a branch on a continuum of
+/// solutions its point at the caller's values ([`slid_to_free`]).
+fn on_continua(g: &Geometry<6>, pose: &Pose, free: &[f64; 6], out: &mut Candidates<6, 8>) {
+    merge_double_roots(g, pose, out);
+    for c in out.as_mut_slice() {
+        c.q = slid_to_free(g, c.q, pose, free);
     }
 }
 

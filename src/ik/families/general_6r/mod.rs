@@ -65,6 +65,7 @@ mod formulation;
 mod roots;
 mod spurious;
 
+use crate::ik::double_root::{apart, merge_double_roots, within, DOUBLE_ROOT};
 use crate::ik::geometry::{orthogonal, rot, Geometry, Pose, M3, V3};
 use crate::ik::polish::{hadamard_ratio, levenberg_marquardt, polish, pose_miss, DAMPED_ROUNDS};
 use crate::ik::solutions::{pose_matrix, residual, Candidates};
@@ -276,45 +277,6 @@ fn one_per_self_motion(g: &Geometry<6>, pose: &Pose, here: &[f64; 6], found: &mu
         if nearest == i {
             kept.push(items[i].q, items[i].fit);
         }
-    }
-    *found = kept;
-}
-
-/// Branches closer than this in every joint (radians) are one solution twice: a double
-/// root at a singular pose, which rounding splits by ~1e-8 (eigenvalues) to ~1e-6
-/// (Newton's linear convergence at a singularity). Two regular solutions are never this
-/// close but at a pose within rounding of a singular one.
-const DOUBLE_ROOT: f64 = 2e-6;
-
-/// Merges the reaching branches within [`DOUBLE_ROOT`] of each other into their mean,
-/// brought back onto the pose and flagged [`Fit::Double`].
-fn merge_double_roots(g: &Geometry<6>, pose: &Pose, found: &mut Found) {
-    let mut kept = Found::default();
-    let all = *found;
-    let items = all.as_slice();
-    let mut used = [false; FOUND];
-    for i in 0..items.len() {
-        if used[i] {
-            continue;
-        }
-        let (mut sum, mut count, mut fit) = (items[i].q, 1.0, items[i].fit);
-        for j in i + 1..items.len() {
-            if !used[j] && within(&items[i].q, &items[j].q, DOUBLE_ROOT) {
-                used[j] = true;
-                for (s, (a, b)) in sum.iter_mut().zip(items[i].q.iter().zip(&items[j].q)) {
-                    // Whole turns apart counts as near: add the difference, not the value.
-                    *s += a + wrap(b - a);
-                }
-                count += 1.0;
-                fit = Fit::Double;
-            }
-        }
-        let q = if count > 1.0 {
-            polish(g, sum.map(|s| s / count), pose).map(wrap)
-        } else {
-            items[i].q
-        };
-        kept.push(q, fit);
     }
     *found = kept;
 }
@@ -728,23 +690,6 @@ const POLISHED: f64 = 1e-13;
 /// Two configurations within rounding of each other (whole turns apart counts as one).
 fn same(a: &[f64; 6], b: &[f64; 6]) -> bool {
     within(a, b, 1e-7)
-}
-
-/// Every joint of `a` within `tol` radians of `b`'s, whole turns apart counting as none.
-fn within(a: &[f64; 6], b: &[f64; 6], tol: f64) -> bool {
-    apart(a, b) < tol
-}
-
-/// The largest joint difference of `a` and `b` in radians, whole turns apart counting as
-/// none (infinite where one is not a number: never within anything).
-fn apart(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| abs(wrap(x - y)))
-        .fold(
-            0.0,
-            |m, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
-        )
 }
 
 /// `q` reaches `pose`: [`miss`] within [`REACHES`] of the pose's size.
