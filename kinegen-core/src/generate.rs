@@ -11,8 +11,8 @@ use std::time::Instant;
 use proc_macro2::TokenStream;
 
 use crate::chain::Chain;
-use crate::emit::functions::{functions, Stats};
-use crate::emit::rust::{item, ItemHeader};
+use crate::emit::functions::{functions, Functions, Stats};
+use crate::emit::rust::{lex, print, ItemHeader};
 use crate::kinematics::det::closed_form::{self, DetModel};
 use crate::kinematics::det::gradient::{det_gradient, DetGradient};
 use crate::kinematics::det::structural::square_rows;
@@ -111,7 +111,12 @@ pub struct Derived {
 /// assert!(code.contains("pub fn jacobian(&self, q: &[f64; 2]) -> [[f64; 2]; 6]"));
 /// ```
 pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Generated {
-    generate_from(chain, header, &derive(chain, options))
+    let derived = derive(chain, options);
+    let emitted = emit(chain, &derived);
+    // The symbolic graph is let go before the item is printed and lexed: for a long
+    // chain, graph, text and tokens alive together were the engine's peak of memory.
+    drop(derived);
+    print_and_lex(chain, header, emitted)
 }
 
 /// [`generate`] from the chain's [`derive()`]d results, for a caller that also reads them
@@ -130,9 +135,20 @@ pub fn generate(chain: &Chain, header: &ItemHeader, options: &Options) -> Genera
 /// assert_eq!(code, generate(&chain, &header, &options).pretty());
 /// ```
 pub fn generate_from(chain: &Chain, header: &ItemHeader, derived: &Derived) -> Generated {
+    print_and_lex(chain, header, emit(chain, derived))
+}
+
+/// What the type holds, from the derived results: each method's straight-line code and
+/// doc, the constants; with the stage times so far and the derivation's notes.
+struct Emitted {
+    functions: Functions,
+    times: StageTimes,
+    notes: Vec<String>,
+}
+
+fn emit(chain: &Chain, derived: &Derived) -> Emitted {
     let mut times = derived.times;
     let mut t = Instant::now();
-    // What the type holds: each method's straight-line code and doc, the constants.
     let functions = functions(
         chain,
         &derived.model,
@@ -143,15 +159,35 @@ pub fn generate_from(chain: &Chain, header: &ItemHeader, derived: &Derived) -> G
     );
     times.emit_ms = lap(&mut t);
     times.ik_emit_ms = functions.ik_emit_ms;
-    // Printed, and parsed into tokens.
-    let tokens = item(chain, header, &functions);
+    Emitted {
+        functions,
+        times,
+        notes: derived.model.notes.clone(),
+    }
+}
+
+/// The item printed, the methods' code let go, then the text lexed into tokens.
+fn print_and_lex(chain: &Chain, header: &ItemHeader, emitted: Emitted) -> Generated {
+    let Emitted {
+        functions,
+        mut times,
+        mut notes,
+    } = emitted;
+    let mut t = Instant::now();
+    let text = print(chain, header, &functions);
+    let Functions {
+        stats,
+        notes: emit_notes,
+        ..
+    } = functions;
+    let tokens = lex(&text);
+    drop(text);
     times.print_ms = lap(&mut t);
-    let mut notes = derived.model.notes.clone();
-    notes.extend(functions.notes);
+    notes.extend(emit_notes);
     Generated {
         tokens,
         notes,
-        stats: functions.stats,
+        stats,
         times,
     }
 }

@@ -50,22 +50,31 @@ pub fn type_name(display: &str) -> String {
     out
 }
 
-/// The item for `chain`: struct (with `Default`), inherent `impl`, trait `impl`s.
+/// The item for `chain`: struct (with `Default`), inherent `impl`, trait `impl`s —
+/// [`print`]ed, then [`lex`]ed.
 pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenStream {
+    lex(&print(chain, header, functions))
+}
+
+/// The item's source text. Printed into one string, sized first: a long chain's item is
+/// tens of megabytes, and a second copy (the inherent `impl`'s body, each method's `let`s
+/// joined) or a string doubled as it grows was the engine's peak of memory.
+pub fn print(chain: &Chain, header: &ItemHeader, functions: &Functions) -> String {
     let ident = header.ident.to_string();
-    let mut items = the_struct(chain, header, functions);
     let qty = format!("&[{}; {}]", functions.float, chain.dof());
-    let mut body = String::new();
-    for item in &functions.items {
-        match item {
-            Item::Method(m) => method(&mut body, m, &qty),
-            Item::Const(c) => konst(&mut body, c),
-        }
-    }
+    let mut items = String::with_capacity(printed_size(functions));
+    items.push_str(&the_struct(chain, header, functions));
     let _ = writeln!(
         items,
-        "#[allow(clippy::all, clippy::pedantic, unused_parens, non_snake_case)]\nimpl {ident} {{\n{body}}}"
+        "#[allow(clippy::all, clippy::pedantic, unused_parens, non_snake_case)]\nimpl {ident} {{"
     );
+    for item in &functions.items {
+        match item {
+            Item::Method(m) => method(&mut items, m, &qty),
+            Item::Const(c) => konst(&mut items, c),
+        }
+    }
+    items.push_str("}\n");
     if chain.scalar == Scalar::F64 {
         items.push_str(&traits(chain, &ident, functions));
     }
@@ -77,11 +86,42 @@ pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenS
             items.push_str(&ik_impl(chain, &ident, check));
         }
     }
-    // Lexed only: inside the macro this is the compiler's own lexer, while parsing the
-    // whole item with `syn` (at the opt-level 0 users build proc-macros with) cost a
-    // fifth of the Panda's expansion. rustc parses the tokens anyway; the engine's tests
-    // parse every robot's item with `syn` (kinegen-core/tests/determinism.rs).
-    match items.parse::<TokenStream>() {
+    items
+}
+
+/// About how long [`print`]'s text is: the methods' docs and statements, and room for
+/// the rest.
+fn printed_size(functions: &Functions) -> usize {
+    let text = |m: &Method| {
+        m.doc.len()
+            + match &m.body {
+                MethodBody::Code { body, result } => {
+                    body.lets.iter().map(|l| l.len() + 1).sum::<usize>() + result.len()
+                }
+                MethodBody::Custom { lets, result, .. } => {
+                    lets.iter().map(|l| l.len() + 1).sum::<usize>() + result.len()
+                }
+                MethodBody::Expr(e) => e.len(),
+            }
+    };
+    let methods: usize = functions
+        .items
+        .iter()
+        .map(|item| match item {
+            Item::Method(m) => text(m) + 256,
+            Item::Const(c) => c.doc.len() + c.value.len() + 64,
+        })
+        .sum();
+    methods + 64 * 1024
+}
+
+/// The item's text as tokens. Lexed only: inside the macro this is the compiler's own
+/// lexer, while parsing the whole item with `syn` (at the opt-level 0 users build
+/// proc-macros with) cost a fifth of the Panda's expansion. rustc parses the tokens
+/// anyway; the engine's tests parse every robot's item with `syn`
+/// (kinegen-core/tests/determinism.rs).
+pub fn lex(text: &str) -> TokenStream {
+    match text.parse::<TokenStream>() {
         Ok(tokens) => tokens,
         Err(e) => {
             // An engine bug, never the user's input: report it instead of emitting
@@ -260,22 +300,28 @@ fn method(out: &mut String, m: &Method, qty: &str) {
     } else {
         (format!("q: {qty}"), "q")
     };
+    // Each statement written out in turn (not joined into a string of its own first).
+    let statements = |out: &mut String, lets: &[String]| {
+        for l in lets {
+            out.push_str(l);
+            out.push('\n');
+        }
+    };
     match body {
         MethodBody::Code { body, result } => {
             doc_lines(out, doc);
             let _ = writeln!(
                 out,
-                "#[inline]\n#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\nlet _ = {unused};\n{}\n{result}\n}}",
-                body.lets.join("\n"),
+                "#[inline]\n#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\nlet _ = {unused};"
             );
+            statements(out, &body.lets);
+            let _ = writeln!(out, "{result}\n}}");
         }
         MethodBody::Custom { args, lets, result } => {
             doc_lines(out, doc);
-            let _ = writeln!(
-                out,
-                "#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{\n{}\n{result}\n}}",
-                lets.join("\n"),
-            );
+            let _ = writeln!(out, "#[must_use]\npub fn {name}(&self, {args}) -> {ret} {{");
+            statements(out, lets);
+            let _ = writeln!(out, "{result}\n}}");
         }
         MethodBody::Expr(e) => {
             doc_lines(out, doc);
