@@ -79,12 +79,14 @@ pub fn merge_double_roots<const K: usize>(g: &Geometry<6>, pose: &Pose, c: &mut 
 }
 
 /// Every joint of `a` within `tol` radians of `b`'s, whole turns apart counting as none.
+#[inline]
 pub fn within(a: &[f64; 6], b: &[f64; 6], tol: f64) -> bool {
     apart(a, b) < tol
 }
 
 /// The largest joint difference of `a` and `b` in radians, whole turns apart counting as
 /// none (infinite where one is not a number: never within anything).
+#[inline]
 pub fn apart(a: &[f64; 6], b: &[f64; 6]) -> f64 {
     a.iter()
         .zip(b)

@@ -4,6 +4,7 @@
 
 use super::geometry::Pose;
 use super::subproblems::{wrap, Fit};
+use core::borrow::Borrow;
 use core::f64::consts::{PI, TAU};
 
 /// A candidate from a family solver: joint values and how the subproblems fitted.
@@ -333,7 +334,9 @@ pub fn finish<const N: usize, const K: usize, C: Check<N>>(
     limits: &[[f64; 2]; N],
     check: &C,
 ) -> IkSolutions<N, K> {
-    let each = candidates.as_slice().iter().map(|c| (c.q, c.fit));
+    // The joint values by reference: copied out of the candidates by value, a Cortex-M
+    // build moved them with a `memmove` (1.5 KB of flash with its routine).
+    let each = candidates.as_slice().iter().map(|c| (&c.q, c.fit));
     finish_each(each, pose, revolute, limits, check)
 }
 
@@ -359,8 +362,8 @@ pub fn finish_locked<const M: usize, const N: usize, const K: usize, C: Check<N>
 
 /// What [`finish`] and [`finish_locked`] do, on the candidates' joint values and fits.
 #[inline(always)]
-fn finish_each<const N: usize, const K: usize, C: Check<N>>(
-    candidates: impl Iterator<Item = ([f64; N], Fit)> + Clone,
+fn finish_each<const N: usize, const K: usize, C: Check<N>, Q: Borrow<[f64; N]>>(
+    candidates: impl Iterator<Item = (Q, Fit)> + Clone,
     pose: &Pose,
     revolute: &[bool; N],
     limits: &[[f64; 2]; N],
@@ -375,7 +378,10 @@ fn finish_each<const N: usize, const K: usize, C: Check<N>>(
         let mut qs = [[0.0; N]; K];
         let mut m = 0;
         for (c_q, c_fit) in candidates.clone() {
-            if c_fit != Fit::Exact && m < K && settle(c_q, &mut qs[m], revolute, limits).is_some() {
+            if c_fit != Fit::Exact
+                && m < K
+                && settle(c_q.borrow(), &mut qs[m], revolute, limits).is_some()
+            {
                 m += 1;
             }
         }
@@ -388,7 +394,7 @@ fn finish_each<const N: usize, const K: usize, C: Check<N>>(
     let mut any_unchecked = false;
     for (c_q, c_fit) in candidates {
         let mut q = [0.0; N];
-        let Some(within_limits) = settle(c_q, &mut q, revolute, limits) else {
+        let Some(within_limits) = settle(c_q.borrow(), &mut q, revolute, limits) else {
             continue;
         };
         // A quartic's simple root (`Checked`) is no more singular than an exact
@@ -472,7 +478,7 @@ fn finish_each<const N: usize, const K: usize, C: Check<N>>(
 // was a `memmove` on a Cortex-M (1.5 KB of flash with its routine).
 #[inline(always)]
 fn settle<const N: usize>(
-    q: [f64; N],
+    q: &[f64; N],
     out: &mut [f64; N],
     revolute: &[bool; N],
     limits: &[[f64; 2]; N],
@@ -499,10 +505,10 @@ fn settle<const N: usize>(
         within_limits &= inside;
     }
     if settled {
-        *out = q;
+        *out = *q;
         return Some(within_limits);
     }
-    settle_by_joint(q, out, revolute, limits)
+    settle_by_joint(*q, out, revolute, limits)
 }
 
 /// [`settle`] joint by joint: each revolute joint wrapped, then moved by a whole turn into
@@ -874,7 +880,7 @@ mod tests {
             for revolute in [true, false] {
                 for t in special.into_iter().chain(near.clone()) {
                     let (mut got_q, mut want_q) = ([f64::NAN], [f64::NAN]);
-                    let got = settle([t], &mut got_q, &[revolute], &[lim]);
+                    let got = settle(&[t], &mut got_q, &[revolute], &[lim]);
                     let want = settle_by_joint([t], &mut want_q, &[revolute], &[lim]);
                     assert_eq!(got, want, "t = {t}, revolute {revolute}, limits {lim:?}");
                     if want.is_some() {
@@ -887,11 +893,11 @@ mod tests {
         // Values the joint-by-joint path moves: the comparison is not of identities.
         let mut q = [0.0];
         assert_eq!(
-            settle([-2.9], &mut q, &[true], &[[-0.02, 3.75]]),
+            settle(&[-2.9], &mut q, &[true], &[[-0.02, 3.75]]),
             Some(true)
         );
         assert_eq!(q[0], -2.9 + TAU);
-        assert_eq!(settle([7.0], &mut q, &[true], &[[-2.9, 2.9]]), Some(true));
+        assert_eq!(settle(&[7.0], &mut q, &[true], &[[-2.9, 2.9]]), Some(true));
         assert_eq!(q[0], 7.0 - TAU);
     }
 

@@ -51,7 +51,7 @@ pub fn type_name(display: &str) -> String {
 }
 
 /// The item for `chain`: struct (with `Default`), inherent `impl`, trait `impl`s —
-/// [`print`]ed, then [`lex`]ed.
+/// [`print`](fn@print)ed, then [`lex`]ed.
 pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenStream {
     lex(&print(chain, header, functions))
 }
@@ -89,7 +89,7 @@ pub fn print(chain: &Chain, header: &ItemHeader, functions: &Functions) -> Strin
     items
 }
 
-/// About how long [`print`]'s text is: the methods' docs and statements, and room for
+/// About how long [`print`](fn@print)'s text is: the methods' docs and statements, and room for
 /// the rest.
 fn printed_size(functions: &Functions) -> usize {
     let text = |m: &Method| {
