@@ -50,15 +50,11 @@ pub fn type_name(display: &str) -> String {
     out
 }
 
-/// The item for `chain`: struct (with `Default`), inherent `impl`, trait `impl`s —
-/// [`print`](fn@print)ed, then [`lex`]ed.
-pub fn item(chain: &Chain, header: &ItemHeader, functions: &Functions) -> TokenStream {
-    lex(&print(chain, header, functions))
-}
-
-/// The item's source text. Printed into one string, sized first: a long chain's item is
-/// tens of megabytes, and a second copy (the inherent `impl`'s body, each method's `let`s
-/// joined) or a string doubled as it grows was the engine's peak of memory.
+/// The item for `chain` as source text: struct (with `Default`), inherent `impl`, trait
+/// `impl`s ([`lex`] makes it tokens). Printed into one string, sized first: a long
+/// chain's item is tens of megabytes, and a second copy (the inherent `impl`'s body, each
+/// method's `let`s joined) or a string doubled as it grows was the engine's peak of
+/// memory.
 pub fn print(chain: &Chain, header: &ItemHeader, functions: &Functions) -> String {
     let ident = header.ident.to_string();
     let qty = format!("&[{}; {}]", functions.float, chain.dof());
