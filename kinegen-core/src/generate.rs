@@ -181,7 +181,6 @@ fn print_and_lex(chain: &Chain, header: &ItemHeader, emitted: Emitted) -> Genera
         ..
     } = functions;
     let tokens = lex(&text);
-    drop(text);
     times.print_ms = lap(&mut t);
     notes.extend(emit_notes);
     Generated {

@@ -85,18 +85,15 @@ pub fn print(chain: &Chain, header: &ItemHeader, functions: &Functions) -> Strin
     items
 }
 
-/// About how long [`print`](fn@print)'s text is: the methods' docs and statements, and room for
-/// the rest.
+/// About how long [`print`](fn@print)'s text is: the methods' docs and statements, and
+/// room for the rest.
 fn printed_size(functions: &Functions) -> usize {
+    let lines = |lets: &[String]| lets.iter().map(|l| l.len() + 1).sum::<usize>();
     let text = |m: &Method| {
         m.doc.len()
             + match &m.body {
-                MethodBody::Code { body, result } => {
-                    body.lets.iter().map(|l| l.len() + 1).sum::<usize>() + result.len()
-                }
-                MethodBody::Custom { lets, result, .. } => {
-                    lets.iter().map(|l| l.len() + 1).sum::<usize>() + result.len()
-                }
+                MethodBody::Code { body, result } => lines(&body.lets) + result.len(),
+                MethodBody::Custom { lets, result, .. } => lines(lets) + result.len(),
                 MethodBody::Expr(e) => e.len(),
             }
     };

@@ -296,10 +296,11 @@ const REACHES: f64 = 1e-9;
 const SETTLED: f64 = 1e-11;
 
 /// `q` where Newton's steps left it, unless it misses `pose` by more than [`SETTLED`]
-/// (`m`, its largest entry, as [`pose_miss`] measures it): then Levenberg–Marquardt's damped steps from it, kept only where they reach the pose
-/// closer (a branch that cannot does not move). Gauss–Newton stalls beside two solutions
-/// close together (each full step overshoots along the near-null direction) and converges
-/// only linearly onto a singular one; damped steps still converge there.
+/// (`m`, its largest entry, as [`pose_miss`] measures it): then Levenberg–Marquardt's
+/// damped steps from it, kept only where they reach the pose closer (a branch that cannot
+/// does not move). Gauss–Newton stalls beside two solutions close together (each full
+/// step overshoots along the near-null direction) and converges only linearly onto a
+/// singular one; damped steps still converge there.
 fn settle(g: &Geometry<6>, q: [f64; 6], pose: &Pose, m: f64) -> [f64; 6] {
     if m <= SETTLED {
         return q;
