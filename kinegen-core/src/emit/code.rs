@@ -6,19 +6,19 @@
 //! the joint angles of an f64 robot in one `sin_cos_n` call (SIMD lanes), any other
 //! angle (and every angle of an f32 robot) with one `sin_cos` each; intermediates
 //! whose value is the sine or cosine of a sum or difference of joint angles are named
-//! after it (`c23`, `c2m3`: [`AngleName`]).
+//! after it (`c23`, `c2m3`: [`AngleName`](crate::emit::angle_names::AngleName), recognised
+//! by `angle_sums`).
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use crate::algebra::angles::AngleSource;
 use crate::algebra::fast_hash::{FastMap, FastSet};
 use crate::algebra::graph::{Graph, Id, Node};
-use crate::algebra::poly::{Poly, VarKind};
-use crate::algebra::trig;
+use crate::algebra::poly::VarKind;
 use crate::chain::Chain;
-use crate::emit::angle_names::AngleName;
+use crate::emit::angle_sums::AngleSums;
 use crate::kinematics::frames::SymbolicChain;
-use crate::model::robot::{JointKind, Scalar};
+use crate::model::robot::Scalar;
 use crate::model::value::{rat_to_f64, Value};
 
 /// Operation counts of generated code (a subtraction counts as an add; a `sin_cos`
@@ -175,9 +175,7 @@ pub struct Coder<'a> {
     chain: &'a Chain,
     sym: &'a SymbolicChain,
     /// Names of angle-sum values by normal form.
-    sum_names: HashMap<Poly, String>,
-    /// Terms of the longest of them.
-    longest_sum: usize,
+    sums: AngleSums<'a>,
     scalar: Scalar,
     /// Parameters are `f32` fields read into f64 code (see [`Coder::in_f64`]).
     widen: bool,
@@ -186,13 +184,10 @@ pub struct Coder<'a> {
 impl<'a> Coder<'a> {
     /// A coder for the symbolic frames `sym` of `chain`.
     pub fn new(chain: &'a Chain, sym: &'a SymbolicChain) -> Self {
-        let sum_names = angle_sum_names(chain, sym);
-        let longest_sum = sum_names.keys().map(Poly::len).max().unwrap_or(0);
         Coder {
-            longest_sum,
             chain,
             sym,
-            sum_names,
+            sums: AngleSums::new(chain, sym),
             scalar: chain.scalar,
             widen: false,
         }
@@ -428,14 +423,7 @@ impl<'a> Coder<'a> {
     fn sum_name(&self, id: Id, taken: &HashSet<String>) -> Option<String> {
         self.g()
             .nf(id)
-            // Angle sums are small: don't hash the big normal forms.
-            .filter(|p| p.len() <= self.longest_sum)
-            .and_then(|p| {
-                self.sum_names
-                    .get(p)
-                    .cloned()
-                    .or_else(|| self.sum_names.get(&p.neg()).map(|n| format!("n{n}")))
-            })
+            .and_then(|p| self.sums.name(p))
             .filter(|n| !taken.contains(n))
     }
 
@@ -538,84 +526,6 @@ fn batched_sin_cos(batch: &[(String, String, String)]) -> String {
             .collect::<Vec<_>>()
             .join(", ")
     )
-}
-
-/// Largest expansion of an angle sum given a name (sums of up to 8 angles).
-const MAX_NAMED_SUM_TERMS: usize = 128;
-
-/// Longest run of joints whose differences get names (`c2m34`): every sign pattern
-/// of a run of k joints is 2^(k−1) names, so longer runs name their plain sum only.
-const MAX_NAMED_DIFFERENCE: usize = 4;
-
-/// Normal forms of sin/cos of sums and differences of consecutive revolute joint
-/// angles → `s23`, `c23`, `c2m3` ([`AngleName`]). A plain sum keeps its name where a
-/// difference has the same normal form.
-pub(crate) fn angle_sum_names(chain: &Chain, sym: &SymbolicChain) -> HashMap<Poly, String> {
-    let ring = &sym.graph.ring;
-    let joint_angle: Vec<Option<(Poly, Poly)>> = chain
-        .kinds()
-        .enumerate()
-        .map(|(i, kind)| {
-            if kind != JointKind::Revolute {
-                return None;
-            }
-            sym.angles.iter().find_map(|a| match &a.source {
-                AngleSource::Joint { joint, offset, .. } if *joint == i && offset.is_zero() => {
-                    Some((Poly::var(a.vars.0), Poly::var(a.vars.1)))
-                }
-                _ => None,
-            })
-        })
-        .collect();
-    // A run's joints (1-based, subtracted ones marked) with sin and cos of its angle.
-    type Run = (Vec<(usize, bool)>, Poly, Poly);
-    let mut plain = HashMap::new();
-    let mut differences = HashMap::new();
-    for start in 0..joint_angle.len() {
-        let Some((s, c)) = joint_angle[start].clone() else {
-            continue;
-        };
-        let mut runs: Vec<Run> = vec![(vec![(start + 1, false)], s, c)];
-        for (k, next) in joint_angle.iter().enumerate().skip(start + 1) {
-            let Some((s2, c2)) = next else { break };
-            let length = k - start + 1;
-            let mut longer = Vec::new();
-            for (joints, s, c) in &runs {
-                // sin/cos of a sum of k angles has 2^(k−1) terms: past a few joints the
-                // expansion costs more than a name is worth (and grows without bound).
-                let is_plain = joints.iter().all(|&(_, minus)| !minus);
-                if s.len() >= MAX_NAMED_SUM_TERMS || !(is_plain || length <= MAX_NAMED_DIFFERENCE) {
-                    continue;
-                }
-                let signs: &[bool] = match length <= MAX_NAMED_DIFFERENCE {
-                    true => &[false, true],
-                    false => &[false],
-                };
-                for &minus in signs {
-                    let (ns, nc) = trig::add_angle(ring, (s, c), (s2, c2), minus);
-                    let mut joints = joints.clone();
-                    joints.push((k + 1, minus));
-                    let label = AngleName::label(&joints, chain.dof());
-                    let names = if is_plain && !minus {
-                        &mut plain
-                    } else {
-                        &mut differences
-                    };
-                    names.entry(ns.clone()).or_insert(format!("s{label}"));
-                    names.entry(nc.clone()).or_insert(format!("c{label}"));
-                    longer.push((joints, ns, nc));
-                }
-            }
-            runs = longer;
-            if runs.is_empty() {
-                break;
-            }
-        }
-    }
-    for (p, name) in differences {
-        plain.entry(p).or_insert(name);
-    }
-    plain
 }
 
 #[cfg(test)]

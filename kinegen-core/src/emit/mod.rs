@@ -13,6 +13,7 @@
 //! - [`rust`]: the item printed and parsed into tokens.
 
 pub mod angle_names;
+mod angle_sums;
 pub mod code;
 pub mod docs;
 pub mod formulas;
