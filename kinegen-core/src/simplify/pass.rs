@@ -2,7 +2,7 @@
 //! expression, then the sign pass, each result checked before it replaces the original;
 //! then the notes on what the exact core could not keep.
 
-use crate::algebra::graph::Id;
+use crate::algebra::graph::{Graph, Id};
 use crate::kinematics::model::Model;
 use crate::kinematics::second_order::SecondOrder;
 use crate::model::options::Options;
@@ -49,12 +49,15 @@ fn move_signs(model: &mut Model) {
     }
     let groups = model.groups();
     let g = &mut model.sym.graph;
-    let signed: Vec<Id> = groups
-        .iter()
-        .flat_map(|group| signs::assign(g, group))
-        .collect();
+    let (signed, cut) = signed_groups(g, &groups);
     let fused_before = model.fused.clone();
-    let fused_after = signs::assign(g, &fused_before);
+    let (fused_after, fused_cut) = signed_groups(g, std::slice::from_ref(&fused_before));
+    if cut || fused_cut {
+        model.notes.push(format!(
+            "{} ran out while the signs were chosen: some negations that could be absorbed are left in",
+            model.sym.graph.deadline.describe()
+        ));
+    }
     let probe = Probe::new(&model.sym);
     let before = model.ids().into_iter().chain(fused_before.iter().copied());
     let after = signed.iter().copied().chain(fused_after.iter().copied());
@@ -70,6 +73,19 @@ fn move_signs(model: &mut Model) {
         model.set_ids(signed);
         model.fused = fused_after;
     }
+}
+
+/// Each group's outputs with their signs chosen ([`signs::assign`]), concatenated, and
+/// whether the deadline cut any group's search short.
+fn signed_groups(g: &mut Graph, groups: &[Vec<Id>]) -> (Vec<Id>, bool) {
+    let mut cut = false;
+    let mut ids = Vec::new();
+    for group in groups {
+        let signed = signs::assign(g, group);
+        cut |= signed.cut;
+        ids.extend(signed.ids);
+    }
+    (ids, cut)
 }
 
 /// Outputs whose expression reached a node without normal form have none: say so.
@@ -108,10 +124,14 @@ pub fn simplify_second_order(model: &mut Model, second: &mut SecondOrder) {
     }
     let groups = second.groups();
     let g = &mut model.sym.graph;
-    let signed: Vec<Id> = groups
-        .iter()
-        .flat_map(|group| signs::assign(g, group))
-        .collect();
+    let (signed, cut) = signed_groups(g, &groups);
+    if cut {
+        model.notes.push(format!(
+            "{} ran out while the second-order outputs' signs were chosen: some negations \
+             that could be absorbed are left in",
+            model.sym.graph.deadline.describe()
+        ));
+    }
     let probe = Probe::new(&model.sym);
     let before = groups.concat();
     let bad = before

@@ -25,13 +25,26 @@ use std::collections::HashMap;
 
 use crate::algebra::graph::{Graph, Id, Node};
 use crate::algebra::poly::Poly;
+use crate::model::options::Deadline;
 
-/// The same outputs with signs chosen to minimise negations. Returns the new ids of
-/// `outputs`, in order.
-pub fn assign(g: &mut Graph, outputs: &[Id]) -> Vec<Id> {
+/// The same outputs with signs chosen to minimise negations.
+pub struct Signed {
+    /// The new ids of the outputs, in order.
+    pub ids: Vec<Id>,
+    /// The graph's deadline passed during the search: the choices made until then are
+    /// kept (every choice is correct; fewer negations were saved).
+    pub cut: bool,
+}
+
+/// The same outputs with signs chosen to minimise negations, searching until the
+/// graph's deadline at the latest.
+pub fn assign(g: &mut Graph, outputs: &[Id]) -> Signed {
     let problem = Problem::new(g, outputs);
-    let choice = problem.solve();
-    problem.rebuild(g, &choice)
+    let (choice, cut) = problem.solve(&g.deadline);
+    Signed {
+        ids: problem.rebuild(g, &choice),
+        cut,
+    }
 }
 
 /// Cost of one negation instruction (outweighs any number of [`SIGNED_FACTOR`]s).
@@ -40,8 +53,18 @@ const NEG: u32 = 1 << 16;
 /// sign-free form might exist: no instruction, but less readable; breaks ties.
 const SIGNED_FACTOR: u32 = 1;
 
+/// Moves of the search between two looks at the clock.
+const MOVES_PER_CLOCK_READ: u32 = 1024;
+
 /// Longest ejection chain (flips in one move).
 const MAX_CHAIN: usize = 12;
+
+/// Most consumers of a node a chain may pass through. A busier node only starts chains
+/// of its own: passing through it costs a look at every consumer, and each consumer's
+/// chain would pass through it. (In a long chain's Jacobian the tool position is used
+/// by every column: through it, the search was quadratic in the joints — 2.7 s of one
+/// 4 000-joint function's search.)
+const MAX_CHAIN_DEGREE: usize = 64;
 
 /// Work space of the local search.
 struct Scratch {
@@ -254,7 +277,8 @@ impl Problem {
     /// Local search from "every node as built" (see [`Problem::descend`]).
     /// Deterministic: no randomness, nodes tried in index order. (Random restarts
     /// were measured: 200 of them saved one negation in UR5's `fk` for 15× the time.)
-    fn solve(&self) -> Choice {
+    /// Returns the choice and whether `deadline` cut the search short.
+    fn solve(&self, deadline: &Deadline) -> (Choice, bool) {
         let n = self.nodes.len();
         let mut ch = Choice {
             neg: vec![false; n],
@@ -271,24 +295,35 @@ impl Problem {
             .collect();
         let vars: Vec<usize> = (0..n).filter(|&i| is_var[i]).collect();
         if vars.is_empty() {
-            return ch;
+            return (ch, false);
         }
         let mut sc = Scratch::new(n);
-        self.descend(&mut ch, &vars, &is_var, &mut sc);
-        ch
+        let cut = !self.descend(&mut ch, &vars, &is_var, &mut sc, deadline);
+        (ch, cut)
     }
 
     /// Local descent from the nodes in `start`: flip a node, then each neighbour
     /// (consumer or operand) whose flip now pays or is free, transitively — an
     /// ejection chain, kept if the chain as a whole saves. The neighbours of a kept
-    /// chain are tried again; done when no node is left to try.
-    fn descend(&self, ch: &mut Choice, start: &[usize], is_var: &[bool], sc: &mut Scratch) {
+    /// chain are tried again; done when no node is left to try (`true`) or at the
+    /// deadline (`false`: the chains kept so far stay).
+    fn descend(
+        &self,
+        ch: &mut Choice,
+        start: &[usize],
+        is_var: &[bool],
+        sc: &mut Scratch,
+        deadline: &Deadline,
+    ) -> bool {
         let mut work: std::collections::VecDeque<usize> = start.iter().copied().collect();
         let mut waiting = vec![false; self.nodes.len()];
         for &v in start {
             waiting[v] = true;
         }
         while let Some(v) = work.pop_front() {
+            if sc.stamp % MOVES_PER_CLOCK_READ == 0 && deadline.passed() {
+                return false;
+            }
             waiting[v] = false;
             sc.stamp += 1;
             sc.chain.clear();
@@ -303,8 +338,11 @@ impl Problem {
                 if sc.chain.len() >= MAX_CHAIN {
                     break;
                 }
-                // Variables (with their many consumers) only start chains.
-                if sc.mark[p] == sc.stamp || !self.free(p) {
+                // Variables (with their many consumers) and busy nodes only start chains.
+                if sc.mark[p] == sc.stamp
+                    || !self.free(p)
+                    || self.parents[p].len() > MAX_CHAIN_DEGREE
+                {
                     continue;
                 }
                 let dp = self.delta(ch, p);
@@ -338,6 +376,7 @@ impl Problem {
                 }
             }
         }
+        true
     }
 
     /// Rebuild the reachable graph under `ch`; returns the outputs' new ids.
@@ -509,11 +548,38 @@ mod tests {
         let before = negations(&g, &outs);
         let x = [0.3, -1.7, 2.9, 0.61];
         let v0 = values(&g, &outs, &x);
-        let new = assign(&mut g, &outs);
+        let new = assign(&mut g, &outs).ids;
         assert_eq!(values(&g, &new, &x), v0);
         // o3 = b − a·d and o4 = c·d + b need none; o1, o2 share one `−a`.
         assert!(before >= 2, "the test needs negations to remove: {before}");
         assert_eq!(negations(&g, &new), 1);
+    }
+
+    #[test]
+    fn a_passed_deadline_stops_the_search_and_keeps_the_values() {
+        let mut g = Graph::default();
+        let [a, b] = ["a", "b"].map(|n| {
+            let v = g.ring.param(n);
+            g.leaf(v)
+        });
+        // −(a·b) and −(b·a·a): one shared `−a` instead of two negations.
+        let ab = g.mul(a, b);
+        let aab = g.mul(ab, a);
+        let outs = [g.neg(ab), g.neg(aab)];
+        let x = [0.3, -1.7];
+        let (v0, n0) = (values(&g, &outs, &x), negations(&g, &outs));
+        let mut searched = g.clone();
+        let full = assign(&mut searched, &outs);
+        assert!(!full.cut);
+        assert!(
+            negations(&searched, &full.ids) < n0,
+            "the test needs a negation to save"
+        );
+        g.deadline = Deadline::after_ms(0);
+        let late = assign(&mut g, &outs);
+        assert!(late.cut);
+        assert_eq!(values(&g, &late.ids, &x), v0);
+        assert_eq!(negations(&g, &late.ids), n0);
     }
 
     #[test]
@@ -548,7 +614,7 @@ mod tests {
             let outs: Vec<Id> = (0..6).map(|_| pool[4 + next(pool.len() - 4)]).collect();
             let x: Vec<f64> = (0..g.ring.len()).map(|k| 0.37 + 0.61 * k as f64).collect();
             let (v0, n0) = (values(&g, &outs, &x), negations(&g, &outs));
-            let new = assign(&mut g, &outs);
+            let new = assign(&mut g, &outs).ids;
             assert_eq!(values(&g, &new, &x), v0, "case {case}");
             assert!(negations(&g, &new) <= n0, "case {case}");
         }
