@@ -302,19 +302,21 @@ impl<'a> Coder<'a> {
             })
             .collect();
         used_vars.sort_unstable();
+        // A search, not a scan: a long chain reads thousands of variables.
+        let used = |v: &u32| used_vars.binary_search(v).is_ok();
         for (name, v) in &self.sym.param_vars {
-            if used_vars.contains(v) {
+            if used(v) {
                 body.lets
                     .push(format!("let {name} = {};", self.param(name)));
             }
         }
         for (j, v) in &self.sym.joint_vars {
-            if used_vars.contains(v) {
+            if used(v) {
                 body.lets.push(format!("let q{} = q[{j}];", j + 1));
             }
         }
         for (j, v) in &self.sym.rate_vars {
-            if used_vars.contains(v) {
+            if used(v) {
                 body.lets
                     .push(format!("let {} = qd[{j}];", g.ring.name(*v)));
             }
@@ -324,11 +326,11 @@ impl<'a> Coder<'a> {
         let mut batch_at = None;
         for a in &self.sym.angles {
             let (s, c) = a.vars;
-            if !(used_vars.contains(&s) || used_vars.contains(&c)) {
+            if !(used(&s) || used(&c)) {
                 continue;
             }
             let (sn, cn) = (g.ring.name(s), g.ring.name(c));
-            let name = |v, n: &str| if used_vars.contains(&v) { n } else { "_" }.to_string();
+            let name = |v, n: &str| if used(&v) { n } else { "_" }.to_string();
             let (sp, cp) = (name(s, sn), name(c, cn));
             let pat = format!("({sp}, {cp})");
             let rhs = match &a.source {
