@@ -8,6 +8,7 @@
 //! normal form and is shared only structurally — always correct, just less simplified.
 
 use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 use num_traits::{One, Signed, Zero};
 
@@ -83,7 +84,9 @@ pub struct Graph {
     /// Variables and reduction rules.
     pub ring: Ring,
     nodes: Vec<Node>,
-    nf: Vec<Option<Poly>>,
+    /// Shared, so that copying the graph to try a candidate (`second_order`'s frames,
+    /// the determinant's rows) copies pointers, not every polynomial.
+    nf: Vec<Option<Arc<Poly>>>,
     /// Operations in the node's expression tree (saturating).
     cost: Vec<u32>,
     memo: FastMap<Node, Id>,
@@ -141,7 +144,7 @@ impl Graph {
 
     /// The exact normal form of a node, if it was small enough to keep.
     pub fn nf(&self, id: Id) -> Option<&Poly> {
-        self.nf[id as usize].as_ref()
+        self.nf[id as usize].as_deref()
     }
 
     /// Number of nodes.
@@ -176,7 +179,7 @@ impl Graph {
         let cost = self.tree_cost(&node);
         self.nodes.push(node.clone());
         self.memo.insert(node, id);
-        self.nf.push(nf);
+        self.nf.push(nf.map(Arc::new));
         self.cost.push(cost);
         id
     }
@@ -207,7 +210,7 @@ impl Graph {
                 None => self.by_nf.entry(fp).or_default().push(id),
             }
         }
-        self.nf.push(nf);
+        self.nf.push(nf.map(Arc::new));
         self.cost.push(cost);
         id
     }
@@ -241,7 +244,7 @@ impl Graph {
 
     /// The node representing the value `p` (whose fingerprint is `fp`), if any.
     fn representative(&self, p: &Poly, fp: u64) -> Option<Id> {
-        let same = |id: &&Id| self.nf[**id as usize].as_ref() == Some(p);
+        let same = |id: &&Id| self.nf[**id as usize].as_deref() == Some(p);
         self.by_nf.get(&fp)?.iter().find(same).copied()
     }
 
@@ -297,7 +300,10 @@ impl Graph {
             self.nf_timeouts += 1;
             return None;
         }
-        let (pa, pb) = (self.nf[a as usize].as_ref()?, self.nf[b as usize].as_ref()?);
+        let (pa, pb) = (
+            self.nf[a as usize].as_deref()?,
+            self.nf[b as usize].as_deref()?,
+        );
         let p = f(&self.ring, pa, pb, self.max_terms);
         match p {
             Some(p) if p.len() <= self.max_terms => Some(p),
