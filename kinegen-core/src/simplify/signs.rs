@@ -556,6 +556,47 @@ mod tests {
     }
 
     #[test]
+    fn a_node_too_busy_to_pass_through_keeps_the_values() {
+        // h = a − b read by 100 consumers (more than a chain may pass through): −(h·c_k),
+        // h·c_k − c_k and −(h + c_k). Chains stop at h; h starts its own, and each of the
+        // other nodes too. (Flipping h would pay here, but only with its 100 consumers in
+        // one chain, longer than `MAX_CHAIN`: the search is local either way.)
+        let mut g = Graph::default();
+        let [a, b] = ["a", "b"].map(|n| {
+            let v = g.ring.param(n);
+            g.leaf(v)
+        });
+        let h = g.sub(a, b);
+        let outs: Vec<Id> = (0..100)
+            .map(|k| {
+                let v = g.ring.param(&format!("c{k}"));
+                let c = g.leaf(v);
+                match k % 3 {
+                    0 => {
+                        let m = g.mul(h, c);
+                        g.neg(m)
+                    }
+                    1 => {
+                        let m = g.mul(h, c);
+                        g.sub(m, c)
+                    }
+                    _ => {
+                        let s = g.add(h, c);
+                        g.neg(s)
+                    }
+                }
+            })
+            .collect();
+        let x: Vec<f64> = (0..g.ring.len()).map(|k| 0.37 + 0.61 * k as f64).collect();
+        let (v0, n0) = (values(&g, &outs, &x), negations(&g, &outs));
+        assert!(n0 >= 60, "the test needs negations: {n0}");
+        let signed = assign(&mut g, &outs);
+        assert!(!signed.cut);
+        assert_eq!(values(&g, &signed.ids, &x), v0);
+        assert!(negations(&g, &signed.ids) <= n0);
+    }
+
+    #[test]
     fn a_passed_deadline_stops_the_search_and_keeps_the_values() {
         let mut g = Graph::default();
         let [a, b] = ["a", "b"].map(|n| {
