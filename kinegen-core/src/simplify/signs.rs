@@ -517,6 +517,12 @@ mod tests {
             .count()
     }
 
+    /// A leaf for a new parameter `name`.
+    fn param(g: &mut Graph, name: &str) -> Id {
+        let v = g.ring.param(name);
+        g.leaf(v)
+    }
+
     fn values(g: &Graph, outputs: &[Id], x: &[f64]) -> Vec<f64> {
         outputs
             .iter()
@@ -527,10 +533,7 @@ mod tests {
     #[test]
     fn signs_are_absorbed_by_sums_products_and_shared_negations() {
         let mut g = Graph::default();
-        let [a, b, c, d] = ["a", "b", "c", "d"].map(|n| {
-            let v = g.ring.param(n);
-            g.leaf(v)
-        });
+        let [a, b, c, d] = ["a", "b", "c", "d"].map(|n| param(&mut g, n));
         // −(a·b), −(c·a), −(a·d) + b, −(−(c·d) + −b)
         let ab = g.mul(a, b);
         let o1 = g.neg(ab);
@@ -562,15 +565,11 @@ mod tests {
         // other nodes too. (Flipping h would pay here, but only with its 100 consumers in
         // one chain, longer than `MAX_CHAIN`: the search is local either way.)
         let mut g = Graph::default();
-        let [a, b] = ["a", "b"].map(|n| {
-            let v = g.ring.param(n);
-            g.leaf(v)
-        });
+        let [a, b] = ["a", "b"].map(|n| param(&mut g, n));
         let h = g.sub(a, b);
         let outs: Vec<Id> = (0..100)
             .map(|k| {
-                let v = g.ring.param(&format!("c{k}"));
-                let c = g.leaf(v);
+                let c = param(&mut g, &format!("c{k}"));
                 match k % 3 {
                     0 => {
                         let m = g.mul(h, c);
@@ -599,10 +598,7 @@ mod tests {
     #[test]
     fn a_passed_deadline_stops_the_search_and_keeps_the_values() {
         let mut g = Graph::default();
-        let [a, b] = ["a", "b"].map(|n| {
-            let v = g.ring.param(n);
-            g.leaf(v)
-        });
+        let [a, b] = ["a", "b"].map(|n| param(&mut g, n));
         // −(a·b) and −(b·a·a): one shared `−a` instead of two negations.
         let ab = g.mul(a, b);
         let aab = g.mul(ab, a);
@@ -635,12 +631,7 @@ mod tests {
         };
         for case in 0..200 {
             let mut g = Graph::default();
-            let mut pool: Vec<Id> = (0..4)
-                .map(|k| {
-                    let v = g.ring.param(&format!("p{k}"));
-                    g.leaf(v)
-                })
-                .collect();
+            let mut pool: Vec<Id> = (0..4).map(|k| param(&mut g, &format!("p{k}"))).collect();
             pool.push(g.int(2));
             for _ in 0..24 {
                 let (x, y) = (pool[next(pool.len())], pool[next(pool.len())]);
