@@ -372,23 +372,22 @@ pub fn eval_lanes(
 }
 
 /// [`eval_lanes`] over `count` joint vectors (`q(i)`), [`LANES`] at a time — a short
-/// last group repeats its last vector in the lanes left over — calling `f(l, out)` for
-/// each vector in order, its outputs lane `l` of `out`.
+/// last group repeats its last vector in the lanes left over — calling `f(first, len,
+/// out)` for each group in order: vectors `first..first + len` are lanes `0..len` of
+/// `out`.
 pub fn eval_groups<'q>(
     program: &Program,
     count: usize,
     q: impl Fn(usize) -> &'q [f64],
     registers: &mut [[f64; LANES]],
     out: &mut [[f64; LANES]],
-    mut f: impl FnMut(usize, &[[f64; LANES]]),
+    mut f: impl FnMut(usize, usize, &[[f64; LANES]]),
 ) {
     for first in (0..count).step_by(LANES) {
         let len = LANES.min(count - first);
         let lanes: [&[f64]; LANES] = core::array::from_fn(|l| q(first + l.min(len - 1)));
         eval_lanes(program, lanes, registers, out);
-        for l in 0..len {
-            f(l, out);
-        }
+        f(first, len, out);
     }
 }
 

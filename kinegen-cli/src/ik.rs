@@ -305,16 +305,22 @@ impl Solver {
         s: &mut Scratch,
         misses: &mut [f64],
     ) {
-        let mut next = misses.iter_mut();
         let (registers, v) = (&mut s.fk_lanes, &mut s.lane_values);
-        crate::eval::eval_groups(&self.fk, count, q, registers, v, |l, v| {
-            let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
-            for (i, row) in t.iter_mut().take(3).enumerate() {
-                for (j, x) in row.iter_mut().enumerate() {
-                    *x = v[4 * i + j][l];
-                }
+        crate::eval::eval_groups(&self.fk, count, q, registers, v, |first, len, v| {
+            let misses = &mut misses[first..first + len];
+            if self.task_rows().is_none() {
+                // The whole pose: every lane's residual at once (same bits).
+                let e = kinegen::ik::solutions::residual_lanes(v, pose);
+                misses.copy_from_slice(&e[..len]);
+                return;
             }
-            if let Some(m) = next.next() {
+            for (l, m) in misses.iter_mut().enumerate() {
+                let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+                for (i, row) in t.iter_mut().take(3).enumerate() {
+                    for (j, x) in row.iter_mut().enumerate() {
+                        *x = v[4 * i + j][l];
+                    }
+                }
                 *m = self.miss(&t, pose);
             }
         });

@@ -560,6 +560,42 @@ pub fn residual(t: &[[f64; 4]; 4], pose: &Pose) -> f64 {
     e
 }
 
+/// [`residual`] of `L` tool poses side by side: lane `l` of `t[4 * i + j]` is entry
+/// `(i, j)` of pose `l`'s top three rows (`t` holds 12 entries, row by row, as a batch of
+/// forward kinematics gives them). Lane `l` of the result has the bits of [`residual`]
+/// of pose `l`: the same comparisons in the same order, each entry taken for all lanes at
+/// once (a solver's eight solutions measured in a few vector instructions an entry).
+///
+/// ```
+/// use kinegen::ik::geometry::Pose;
+/// use kinegen::ik::solutions::{residual, residual_lanes};
+/// let pose = Pose::from_matrix(&[[1.0, 0.0, 0.0, 0.5], [0.0, 1.0, 0.0, 0.0],
+///                                [0.0, 0.0, 1.0, 2.0], [0.0, 0.0, 0.0, 1.0]]);
+/// let t = [[1.0, 0.0, 0.0, 0.5], [0.0, 1.0, 0.0, 1e-9], [0.0, 0.0, 1.0, 2.0], [0.0, 0.0, 0.0, 1.0]];
+/// let lanes: Vec<[f64; 2]> = t.iter().take(3).flatten().map(|&x| [x, 0.0]).collect();
+/// let e = residual_lanes::<2>(&lanes, &pose);
+/// assert_eq!(e[0], residual(&t, &pose));
+/// assert_eq!(e[0], 1e-9);
+/// ```
+///
+/// # Panics
+/// If `t` has fewer than 12 entries.
+#[inline]
+pub fn residual_lanes<const L: usize>(t: &[[f64; L]], pose: &Pose) -> [f64; L] {
+    let mut e = [0.0; L];
+    for i in 0..3 {
+        for j in 0..4 {
+            let target = if j < 3 { pose.r[(i, j)] } else { pose.p[i] };
+            let x = &t[4 * i + j];
+            // A select, not a branch: one `maxpd` for two lanes (its operand order keeps
+            // `e` where `d` is NaN, as `if d > e` does).
+            let d: [f64; L] = core::array::from_fn(|l| (x[l] - target).abs());
+            e = core::array::from_fn(|l| if d[l] > e[l] { d[l] } else { e[l] });
+        }
+    }
+    e
+}
+
 /// `max` over `rows` (indices into `[x y z rx ry rz]`) of the task error: position
 /// entries, and for `rz` the wrapped difference of the angles about z. (Planar arms: only
 /// their task rows are solved.)
@@ -1059,6 +1095,7 @@ mod tests {
             1e-300,
         ];
         let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut poses = std::vec::Vec::new();
         for k in 0..2_000 {
             let mut t = pose_matrix(&pose);
             for entry in t.iter_mut().take(3).flatten() {
@@ -1073,6 +1110,17 @@ mod tests {
                 };
             }
             assert_eq!(residual(&t, &pose).to_bits(), by_max(&t).to_bits(), "{t:?}");
+            poses.push(t);
+        }
+        // Side by side, three lanes at a time: each lane's bits as alone.
+        for three in poses.chunks_exact(3) {
+            let lanes: std::vec::Vec<[f64; 3]> = (0..12)
+                .map(|k| core::array::from_fn(|l| three[l][k / 4][k % 4]))
+                .collect();
+            let e = residual_lanes(&lanes, &pose);
+            for (l, t) in three.iter().enumerate() {
+                assert_eq!(e[l].to_bits(), residual(t, &pose).to_bits(), "{t:?}");
+            }
         }
     }
 }

@@ -111,13 +111,22 @@ impl Measures {
             ..
         } = s;
         let q = |i: usize| &qs[i * n..(i + 1) * n];
-        crate::eval::eval_groups(&self.program, count, q, lane_registers, lane_out, |l, v| {
-            for (o, lanes) in out.iter_mut().zip(v) {
-                *o = lanes[l];
-            }
-            let (m, values) = self.read(out);
-            f(m, values);
-        });
+        crate::eval::eval_groups(
+            &self.program,
+            count,
+            q,
+            lane_registers,
+            lane_out,
+            |_, len, v| {
+                for l in 0..len {
+                    for (o, lanes) in out.iter_mut().zip(v) {
+                        *o = lanes[l];
+                    }
+                    let (m, values) = self.read(out);
+                    f(m, values);
+                }
+            },
+        );
     }
 
     /// The manipulability and the factors' values from the program's outputs.
