@@ -216,30 +216,33 @@ fn geometry<const N: usize>(g: &DynGeometry) -> Geometry<N> {
 
 fn finished<const N: usize, const K: usize>(
     c: &Candidates<N, K>,
+    pose: &Pose,
     pr: &DynProblem,
     checks: &Checks,
     out: &mut DynSolutions,
 ) {
-    let (pose, revolute, limits) = finish_inputs::<N>(pr);
-    out.fill(&finish(c, &pose, &revolute, &limits, checks));
+    let (revolute, limits) = finish_inputs::<N>(pr);
+    out.fill(&finish(c, pose, &revolute, &limits, checks));
 }
 
-/// The pose, which joints turn, and the limits, as `finish` takes them for `N` joints.
-fn finish_inputs<const N: usize>(pr: &DynProblem) -> (Pose, [bool; N], [[f64; 2]; N]) {
+/// Which joints turn, and the limits, as `finish` takes them for `N` joints.
+fn finish_inputs<const N: usize>(pr: &DynProblem) -> ([bool; N], [[f64; 2]; N]) {
     (
-        Pose::from_matrix(&pr.pose),
         core::array::from_fn(|i| pr.revolute[i]),
         core::array::from_fn(|i| pr.limits[i]),
     )
 }
 
+/// The 6-joint family `plan` names, its candidates into `out` (by reference: these sets
+/// are ~500 bytes, and moving them in and out cost two copies a pose); `None` for a
+/// solver it does not know.
 fn six(
     plan: &DynPlan,
     g: &Geometry<6>,
     pose: &Pose,
     free: &[f64; 6],
-    mut out: Candidates<6, 8>,
-) -> Option<Candidates<6, 8>> {
+    out: &mut Candidates<6, 8>,
+) -> Option<()> {
     let w = plan.wrist;
     let solver = match plan.solver.as_str() {
         "three_parallel_two_intersecting" => families::three_parallel_two_intersecting,
@@ -256,12 +259,12 @@ fn six(
             pose,
             free,
             |g, p, f, o| solver(g, p, f, w, o),
-            &mut out,
+            out,
         );
     } else {
-        solver(g, pose, free, w, &mut out);
+        solver(g, pose, free, w, out);
     }
-    Some(out)
+    Some(())
 }
 
 fn planar<const N: usize>(pr: &DynProblem, checks: &Checks, out: &mut DynSolutions) {
@@ -277,15 +280,16 @@ fn planar<const N: usize>(pr: &DynProblem, checks: &Checks, out: &mut DynSolutio
         &free,
         &mut c,
     );
-    finished(&c, pr, checks, out)
+    finished(&c, &pose, pr, checks, out)
 }
 
 fn pitch_roll<const N: usize>(pr: &DynProblem, checks: &Checks, out: &mut DynSolutions) {
     let g = geometry::<N>(pr.geometry);
     let free: [f64; N] = core::array::from_fn(|i| pr.free[i]);
     let mut c = Candidates::<N, 4>::default();
-    families::pitch_roll(&g, &Pose::from_matrix(&pr.pose), &free, &mut c);
-    finished(&c, pr, checks, out)
+    let pose = Pose::from_matrix(&pr.pose);
+    families::pitch_roll(&g, &pose, &free, &mut c);
+    finished(&c, &pose, pr, checks, out)
 }
 
 /// Every solution of `pr.pose`; `Err` for a solver or joint count no family has.
@@ -330,7 +334,7 @@ pub fn solve_into(
             "cartesian" => families::position_cartesian(&g, &pose, &free, &mut c),
             _ => return Err("unknown solver"),
         }
-        finished(&c, pr, checks, out);
+        finished(&c, &pose, pr, checks, out);
         return Ok(());
     }
     if pr.plan.solver == "cartesian_yaw" {
@@ -344,7 +348,7 @@ pub fn solve_into(
         };
         let mut c = Candidates::<4, 1>::default();
         families::cartesian_yaw(&g, &pose, r, &free, &mut c);
-        finished(&c, pr, checks, out);
+        finished(&c, &pose, pr, checks, out);
         return Ok(());
     }
     if pr.plan.solver == "pitch_roll" {
@@ -367,20 +371,19 @@ pub fn solve_into(
     if pr.plan.solver == "general_6r" {
         let own = families::Hint::new();
         let hint = pr.hint.unwrap_or(&own);
-        return six_or_locked::<16>(pr, checks, out, |g, free| {
-            let mut c = Candidates::default();
-            families::general_6r(g, &pose, free, hint, &mut c);
-            Some(c)
+        return six_or_locked::<16>(pr, &pose, false, checks, out, |g, free, c| {
+            families::general_6r(g, &pose, free, hint, c);
+            Some(())
         });
     }
-    six_or_locked::<8>(pr, checks, out, |g, free| {
-        six(pr.plan, g, &pose, free, candidates(pr))
+    six_or_locked::<8>(pr, &pose, pr.reaching_only, checks, out, |g, free, c| {
+        six(pr.plan, g, &pose, free, c)
     })
 }
 
-/// An empty set of candidates, asking for reaching solutions only where `pr` does.
-fn candidates<const N: usize, const K: usize>(pr: &DynProblem) -> Candidates<N, K> {
-    if pr.reaching_only {
+/// An empty set of candidates, asking for reaching solutions only with `reaching_only`.
+fn candidates<const N: usize, const K: usize>(reaching_only: bool) -> Candidates<N, K> {
+    if reaching_only {
         Candidates::reaching_only()
     } else {
         Candidates::default()
@@ -388,19 +391,23 @@ fn candidates<const N: usize, const K: usize>(pr: &DynProblem) -> Candidates<N, 
 }
 
 /// A 6-joint solver's candidates on the robot's six joints, or on a 7-joint arm's six
-/// with the locked one at `pr.q_locked`, finished.
+/// with the locked one at `pr.q_locked`, finished; `solve` adds them to the (empty) set
+/// it is given, asking for reaching ones only with `reaching_only`.
 fn six_or_locked<const K: usize>(
     pr: &DynProblem,
+    pose: &Pose,
+    reaching_only: bool,
     checks: &Checks,
     out: &mut DynSolutions,
-    solve: impl Fn(&Geometry<6>, &[f64; 6]) -> Option<Candidates<6, K>>,
+    solve: impl Fn(&Geometry<6>, &[f64; 6], &mut Candidates<6, K>) -> Option<()>,
 ) -> Result<(), &'static str> {
+    let mut c = candidates(reaching_only);
     match (pr.geometry.h.len(), pr.plan.locked) {
         (6, None) => {
             let g = geometry::<6>(pr.geometry);
             let free: [f64; 6] = core::array::from_fn(|i| pr.free[i]);
-            let c = solve(&g, &free).ok_or("unknown solver")?;
-            finished(&c, pr, checks, out);
+            solve(&g, &free, &mut c).ok_or("unknown solver")?;
+            finished(&c, pose, pr, checks, out);
             Ok(())
         }
         (7, Some(k)) => {
@@ -408,10 +415,10 @@ fn six_or_locked<const K: usize>(
             let g: Geometry<6> = g7.lock(k, pr.q_locked);
             let free7: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
             let free: [f64; 6] = without(&free7, k);
-            let c6 = solve(&g, &free).ok_or("unknown solver")?;
+            solve(&g, &free, &mut c).ok_or("unknown solver")?;
             // The locked joint put back as each candidate is settled.
-            let (pose, revolute, limits) = finish_inputs::<7>(pr);
-            let s = finish_locked(&c6, k, pr.q_locked, &pose, &revolute, &limits, checks);
+            let (revolute, limits) = finish_inputs::<7>(pr);
+            let s = finish_locked(&c, k, pr.q_locked, pose, &revolute, &limits, checks);
             out.fill(&s);
             Ok(())
         }
@@ -455,6 +462,6 @@ pub fn solve_arm_angle_into(
     let free: [f64; 7] = core::array::from_fn(|i| pr.free[i]);
     let mut c = Candidates::<7, 8>::default();
     families::srs_arm_angle(&g, &pose, psi, WristPair::HalfTurn, &free, &mut c);
-    finished(&c, pr, checks, out);
+    finished(&c, &pose, pr, checks, out);
     Ok(())
 }
