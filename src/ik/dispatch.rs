@@ -87,21 +87,27 @@ pub struct DynSolutions {
 
 impl DynSolutions {
     /// Number of solutions.
+    #[inline]
     pub fn len(&self) -> usize {
         self.flags.len()
     }
 
     /// No solution.
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.flags.is_empty()
     }
 
     /// Joint values of solution `i`.
+    // Inlined into other crates: a batch reads every solution through these (the calls
+    // cost 64 instructions a UR5 pose in Python's `Robot.ik`, 0.6 %).
+    #[inline]
     pub fn q(&self, i: usize) -> &[f64] {
         &self.q[i * self.n..(i + 1) * self.n]
     }
 
     /// Flags of solution `i`.
+    #[inline]
     pub fn flags(&self, i: usize) -> &DynFlags {
         &self.flags[i]
     }
