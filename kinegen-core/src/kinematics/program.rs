@@ -433,7 +433,7 @@ impl Program {
         // were a tenth of the instructions measuring a UR5 pose's eight solutions).
         assert!(
             registers.len() >= self.initial.len(),
-            "registers from another program"
+            "fewer registers than the program has (take them from `lane_registers`)"
         );
         let p = registers.as_mut_ptr();
         // SAFETY: `i < initial.len() <= registers.len()` (above), and `p` is the only
