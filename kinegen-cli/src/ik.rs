@@ -275,6 +275,27 @@ impl Solver {
         }
     }
 
+    /// [`Solver::miss`] of the first `out.len()` lanes of fk's outputs `v` (12 entries,
+    /// row by row, as the fk program gives them): the whole pose's residuals all lanes at
+    /// once ([`kinegen::ik::solutions::residual_lanes`], the same bits), a planar arm's
+    /// task rows lane by lane.
+    fn lane_misses(&self, v: &[[f64; LANES]], pose: &Pose, out: &mut [f64]) {
+        if self.task_rows().is_none() {
+            let e = kinegen::ik::solutions::residual_lanes(v, pose);
+            out.copy_from_slice(&e[..out.len()]);
+            return;
+        }
+        for (l, m) in out.iter_mut().enumerate() {
+            let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
+            for (i, row) in t.iter_mut().take(3).enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x = v[4 * i + j][l];
+                }
+            }
+            *m = self.miss(&t, pose);
+        }
+    }
+
     fn residual(&self, q: &[f64], pose: &Pose, s: &mut Scratch) -> f64 {
         let t = self.fk(q, s);
         self.miss(&t, pose)
@@ -307,22 +328,7 @@ impl Solver {
     ) {
         let (registers, v) = (&mut s.fk_lanes, &mut s.lane_values);
         crate::eval::eval_groups(&self.fk, count, q, registers, v, |first, len, v| {
-            let misses = &mut misses[first..first + len];
-            if self.task_rows().is_none() {
-                // The whole pose: every lane's residual at once (same bits).
-                let e = kinegen::ik::solutions::residual_lanes(v, pose);
-                misses.copy_from_slice(&e[..len]);
-                return;
-            }
-            for (l, m) in misses.iter_mut().enumerate() {
-                let mut t = [[0.0, 0.0, 0.0, 1.0]; 4];
-                for (i, row) in t.iter_mut().take(3).enumerate() {
-                    for (j, x) in row.iter_mut().enumerate() {
-                        *x = v[4 * i + j][l];
-                    }
-                }
-                *m = self.miss(&t, pose);
-            }
+            self.lane_misses(v, pose, &mut misses[first..first + len]);
         });
     }
 
