@@ -112,14 +112,14 @@ impl<'a> AngleSums<'a> {
         let Some((s, c)) = self.joint_angle[first].clone() else {
             return HashMap::new();
         };
+        let signs: &[bool] = match length <= MAX_NAMED_DIFFERENCE {
+            true => &[false, true],
+            false => &[false],
+        };
         let mut runs: Vec<Run> = vec![(vec![(first + 1, false)], s, c)];
         for k in first + 1..=last {
             let Some((s2, c2)) = &self.joint_angle[k] else {
                 return HashMap::new();
-            };
-            let signs: &[bool] = match length <= MAX_NAMED_DIFFERENCE {
-                true => &[false, true],
-                false => &[false],
             };
             let mut longer = Vec::new();
             for (joints, s, c) in &runs {
