@@ -47,17 +47,13 @@ fn move_signs(model: &mut Model) {
         ));
         return;
     }
-    let groups = model.groups();
-    let g = &mut model.sym.graph;
-    let (signed, cut) = signed_groups(g, &groups);
+    // The fused function's outputs are one more group, signed last.
     let fused_before = model.fused.clone();
-    let (fused_after, fused_cut) = signed_groups(g, std::slice::from_ref(&fused_before));
-    if cut || fused_cut {
-        model.notes.push(format!(
-            "{} ran out while the signs were chosen: some negations that could be absorbed are left in",
-            model.sym.graph.deadline.describe()
-        ));
-    }
+    let mut groups = model.groups().to_vec();
+    groups.push(fused_before.clone());
+    let (g, notes) = (&mut model.sym.graph, &mut model.notes);
+    let mut signed = signed_groups(g, &groups, "the signs", notes);
+    let fused_after = signed.split_off(signed.len() - fused_before.len());
     let probe = Probe::new(&model.sym);
     let before = model.ids().into_iter().chain(fused_before.iter().copied());
     let after = signed.iter().copied().chain(fused_after.iter().copied());
@@ -75,9 +71,14 @@ fn move_signs(model: &mut Model) {
     }
 }
 
-/// Each group's outputs with their signs chosen ([`signs::assign`]), concatenated, and
-/// whether the deadline cut any group's search short.
-fn signed_groups(g: &mut Graph, groups: &[Vec<Id>]) -> (Vec<Id>, bool) {
+/// Each group's outputs with their signs chosen ([`signs::assign`]), concatenated; where
+/// the deadline cut a group's search short, a note saying so of `what` (once).
+fn signed_groups(
+    g: &mut Graph,
+    groups: &[Vec<Id>],
+    what: &str,
+    notes: &mut Vec<String>,
+) -> Vec<Id> {
     let mut cut = false;
     let mut ids = Vec::new();
     for group in groups {
@@ -85,7 +86,13 @@ fn signed_groups(g: &mut Graph, groups: &[Vec<Id>]) -> (Vec<Id>, bool) {
         cut |= signed.cut;
         ids.extend(signed.ids);
     }
-    (ids, cut)
+    if cut {
+        notes.push(format!(
+            "{} ran out while {what} were chosen: some negations that could be absorbed are left in",
+            g.deadline.describe()
+        ));
+    }
+    ids
 }
 
 /// Outputs whose expression reached a node without normal form have none: say so.
@@ -123,15 +130,8 @@ pub fn simplify_second_order(model: &mut Model, second: &mut SecondOrder) {
         return;
     }
     let groups = second.groups();
-    let g = &mut model.sym.graph;
-    let (signed, cut) = signed_groups(g, &groups);
-    if cut {
-        model.notes.push(format!(
-            "{} ran out while the second-order outputs' signs were chosen: some negations \
-             that could be absorbed are left in",
-            model.sym.graph.deadline.describe()
-        ));
-    }
+    let (g, notes) = (&mut model.sym.graph, &mut model.notes);
+    let signed = signed_groups(g, &groups, "the second-order outputs' signs", notes);
     let probe = Probe::new(&model.sym);
     let before = groups.concat();
     let bad = before
